@@ -1,0 +1,130 @@
+"""Model parameters: defaults, presets and validation (MODEL.md §1).
+
+All model functions take plain floats; the dictionaries here are the one documented
+place where default values live.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Mapping
+
+#: Default parameters: the note's Fig. 5 setting, ``Fs = 1.5 Fc``, ``σ = 0``, ``s = 1``.
+#: ``V = 20 m/s`` and ``δ = 1`` put the quasi-static break-away velocity of E12
+#: (``ẋ* ≈ 19.5·k/F̂`` for ``z* = 0.95``, ``s = 1``) well below ``V`` at ``k = 0.01``
+#: (``F_ba ≈ Fs``) and far above it at ``k = 30`` (``F_ba ≈ Fc``), with the Fc, Fs and
+#: avg curves apart in between, as in the note's Fig. 5.
+DEFAULTS: dict[str, float | str] = {
+    "Fc": 1.0,  # Coulomb level [N]
+    "Fs": 1.5,  # Stribeck (stiction) level [N]
+    "V": 100.0,  # Stribeck velocity [m/s]
+    "delta": 1.0,  # Stribeck shape exponent [-]
+    "sigma": 0.0,  # viscous coefficient [N s/m]
+    "s": 1.0,  # presliding scale; 1/s is the presliding distance [1/m]
+    "z_ba": 0.95,  # presliding fraction taken as break-away [-]
+    "m": 1e-4,  # moving mass of the ramp experiment [kg]
+    "k": 1.0,  # actuation force rate [N/s]
+    "F_hat": "avg",  # steady-state level used in E12
+}
+
+#: The LuGre comparison model of Canudas de Wit et al. (1995), MODEL.md §5.
+LUGRE_1995: dict[str, float] = {
+    "sigma0": 1e5,  # bristle stiffness [N/m]
+    "sigma1": math.sqrt(1e5),  # bristle damping [N s/m]
+    "sigma2": 0.4,  # viscous coefficient [N s/m]
+    "Fc": 1.0,  # [N]
+    "Fs": 1.5,  # [N]
+    "vs": 1e-3,  # Stribeck velocity [m/s]
+    "delta": 2.0,  # [-]
+    "m": 1.0,  # [kg]
+}
+
+#: The Fig. 3 rate grid of the note: k = 0.01, 2.01, ..., 28.01 [N/s].
+FIG3_RATES: tuple[float, ...] = tuple(0.01 + 2.0 * i for i in range(15))
+
+F_HAT_CHOICES = ("Fc", "Fs", "avg", "self")
+
+#: Named presets for the explorer (each a full parameter set).
+PRESETS: dict[str, dict[str, float | str]] = {
+    "fig5": {**DEFAULTS},
+    "no-stribeck": {**DEFAULTS, "Fs": 1.0},
+    "viscous": {**DEFAULTS, "sigma": 0.01},
+    "strengthening": {**DEFAULTS, "delta": -1.0},
+    "sharp-stribeck": {**DEFAULTS, "V": 5.0, "delta": 2.0},
+    "lugre-1995": {
+        **DEFAULTS,
+        "Fc": LUGRE_1995["Fc"],
+        "Fs": LUGRE_1995["Fs"],
+        "V": LUGRE_1995["vs"],
+        "delta": LUGRE_1995["delta"],
+        "sigma": LUGRE_1995["sigma2"],
+        "m": LUGRE_1995["m"],
+        # presliding distance of LuGre's bristles: Fs/sigma0 = 15 µm
+        "s": LUGRE_1995["sigma0"] / LUGRE_1995["Fs"],
+    },
+}
+
+PRESET_DESCRIPTIONS: dict[str, str] = {
+    "fig5": "The note's Fig. 5: Fs = 1.5 Fc, σ = 0, s = 1.",
+    "no-stribeck": "Fs = Fc: no velocity weakening, break-away is Fc·f(z*) for every k.",
+    "viscous": "Fig. 5 with viscous friction σ = 0.01 N·s/m: F_ba rises again at high k.",
+    "strengthening": "δ < 0: velocity-strengthening curve, F_ba rises from Fc towards Fs.",
+    "sharp-stribeck": "Narrow Stribeck dip (V = 5, δ = 2): a steep fall of F_ba.",
+    "lugre-1995": "The steady-state curve of the LuGre 1995 paper (vs = 1 mm/s, δ = 2).",
+}
+
+
+def _finite(name: str, value: float) -> float:
+    try:
+        value = float(value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a number, got {value!r}") from None
+    if not math.isfinite(value):
+        raise ValueError(f"{name} must be finite, got {value}")
+    return value
+
+
+def check_stribeck(Fc: float, Fs: float, V: float, delta: float, sigma: float = 0.0) -> None:
+    """Raise ``ValueError`` naming the parameter when (E2)'s constraints of §1 fail."""
+    Fc, Fs = _finite("Fc", Fc), _finite("Fs", Fs)
+    V, delta, sigma = _finite("V", V), _finite("delta", delta), _finite("sigma", sigma)
+    if Fc <= 0:
+        raise ValueError(f"Fc must be > 0, got {Fc}")
+    if Fs < Fc:
+        raise ValueError(f"Fs must be >= Fc, got Fs={Fs} < Fc={Fc}")
+    if V <= 0:
+        raise ValueError(f"V must be > 0, got {V}")
+    if delta == 0:
+        raise ValueError("delta must be non-zero")
+    if sigma < 0:
+        raise ValueError(f"sigma must be >= 0, got {sigma}")
+
+
+def check_positive(**values: float) -> None:
+    """Raise ``ValueError`` naming the first parameter that is not finite and > 0."""
+    for name, value in values.items():
+        if _finite(name, value) <= 0:
+            raise ValueError(f"{name} must be > 0, got {value}")
+
+
+def check_fraction(name: str, value: float) -> None:
+    """Raise ``ValueError`` unless ``0 < value < 1``."""
+    value = _finite(name, value)
+    if not 0 < value < 1:
+        raise ValueError(f"{name} must be in (0, 1), got {value}")
+
+
+def check_f_hat(F_hat: str) -> None:
+    if F_hat not in F_HAT_CHOICES:
+        raise ValueError(f"F_hat must be one of {F_HAT_CHOICES}, got {F_hat!r}")
+
+
+def with_defaults(params: Mapping[str, float | str] | None = None, **overrides) -> dict:
+    """Return :data:`DEFAULTS` updated by ``params`` and ``overrides``; unknown keys raise."""
+    merged = dict(DEFAULTS)
+    for source in (params or {}), overrides:
+        for key, value in source.items():
+            if key not in DEFAULTS:
+                raise ValueError(f"unknown parameter {key!r}")
+            merged[key] = value
+    return merged

@@ -1,0 +1,32 @@
+"""Settings in one place (environment variables prefixed ``BREAKAWAY_``)."""
+
+from __future__ import annotations
+
+from functools import lru_cache
+from pathlib import Path
+
+from pydantic_settings import BaseSettings, SettingsConfigDict
+
+_REPO_FRONTEND = Path(__file__).resolve().parents[2] / "frontend"
+
+
+class Settings(BaseSettings):
+    """Server and engine settings; each can be overridden by ``BREAKAWAY_<NAME>``."""
+
+    model_config = SettingsConfigDict(env_prefix="BREAKAWAY_")
+
+    host: str = "127.0.0.1"
+    port: int = 8000
+    frontend_dir: Path = _REPO_FRONTEND
+    #: Largest accepted upload for /api/fit [bytes] (MODEL.md §6: 20 MB).
+    max_upload_bytes: int = 20 * 1024 * 1024
+    #: Largest request body for the JSON endpoints [bytes].
+    max_json_bytes: int = 64 * 1024
+    #: Caps on grid sizes and rate lists in requests.
+    max_grid_points: int = 5000
+    max_rates: int = 64
+
+
+@lru_cache
+def get_settings() -> Settings:
+    return Settings()
