@@ -25,6 +25,12 @@ class Settings(BaseSettings):
     #: Caps on grid sizes and rate lists in requests.
     max_grid_points: int = 5000
     max_rates: int = 64
+    #: Significant digits of the floats in /api/explore (payload size; 7 keeps 5e-7 relative).
+    payload_digits: int = 7
+    #: Ramp simulations run in a worker process so that a slow one never blocks the
+    #: explorer: its wall-clock budget per request [s] and step budget per rate.
+    simulate_timeout_s: float = 20.0
+    simulate_max_steps: int = 1_000_000
 
 
 @lru_cache

@@ -1,19 +1,56 @@
-"""The FastAPI application: API routers and the static explorer."""
+"""The FastAPI application: API routers, security middleware and the static explorer."""
 
 from __future__ import annotations
 
-from fastapi import FastAPI
+from contextlib import asynccontextmanager
+from typing import AsyncIterator
+
+from fastapi import APIRouter, FastAPI
+from fastapi.exceptions import RequestValidationError
 from fastapi.staticfiles import StaticFiles
 
 from .. import __version__
 from ..settings import get_settings
-from .routers import health
+from .errors import request_validation_handler
+from .middleware import BodySizeLimit, CatchAll, SecurityHeaders
+from .routers import assets, explore, health, presets, simulate
+from .simulation import SimulationRunner
+
+#: The API, one router per resource. The identification engine adds its router
+#: (``routers/fit.py``: ``POST /api/fit``) to this list.
+ROUTERS: list[APIRouter] = [
+    health.router,
+    presets.router,
+    explore.router,
+    simulate.router,
+    assets.router,
+]
+
+
+@asynccontextmanager
+async def lifespan(app: FastAPI) -> AsyncIterator[None]:
+    app.state.simulations.warm_up()  # start the worker now, not on the first click
+    try:
+        yield
+    finally:
+        app.state.simulations.shutdown()
 
 
 def create_app() -> FastAPI:
     settings = get_settings()
-    app = FastAPI(title="Breakaway", version=__version__)
-    app.include_router(health.router)
+    app = FastAPI(title="Breakaway", version=__version__, lifespan=lifespan,
+                  docs_url=None, redoc_url=None,
+                  description="Ruderman's break-away friction model: explorer API "
+                              "(MODEL.md §9). Interactive docs at /docs.")
+    app.state.simulations = SimulationRunner()
+    app.add_exception_handler(RequestValidationError, request_validation_handler)
+    for router in ROUTERS:
+        app.include_router(router)
+    # added innermost first: CatchAll sees every exception, SecurityHeaders every response
+    app.add_middleware(CatchAll)
+    app.add_middleware(BodySizeLimit, json_limit=settings.max_json_bytes,
+                       upload_limit=settings.max_upload_bytes)
+    app.add_middleware(SecurityHeaders)
     if settings.frontend_dir.is_dir():
         app.mount("/", StaticFiles(directory=settings.frontend_dir, html=True), name="frontend")
     return app

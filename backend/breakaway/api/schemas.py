@@ -1,8 +1,246 @@
-"""Pydantic request and response models of the HTTP API (MODEL.md §9)."""
+"""Pydantic request and response models of the HTTP API (MODEL.md §9).
+
+Every constraint of MODEL.md §1 is carried here, so a bad value is a 422 that names the
+field before any model code runs. Requests are strict: numbers must be JSON numbers
+(no strings, no booleans), finite (no NaN/Infinity), and unknown fields are rejected.
+"""
 
 from __future__ import annotations
 
-from pydantic import BaseModel
+from typing import Annotated, Literal
+
+from pydantic import (
+    AfterValidator,
+    BaseModel,
+    ConfigDict,
+    Field,
+    ValidationInfo,
+    field_validator,
+    model_validator,
+)
+
+from ..params import DEFAULTS, LUGRE_1995
+from ..settings import get_settings
+
+#: MODEL.md §1: δ ≠ 0, and |δ| ≥ 0.05 in practice.
+MIN_ABS_DELTA = 0.05
+
+_STRICT = ConfigDict(strict=True, allow_inf_nan=False, extra="forbid")
+
+FHat = Literal["Fc", "Fs", "avg", "self"]
+
+
+def _check_delta(value: float | None) -> float | None:
+    if value is not None and abs(value) < MIN_ABS_DELTA:
+        raise ValueError(f"delta must satisfy |delta| >= {MIN_ABS_DELTA} (delta != 0)")
+    return value
+
+
+def _cap_grid(value: int) -> int:
+    cap = get_settings().max_grid_points
+    if value > cap:
+        raise ValueError(f"grid size must be <= {cap}, got {value}")
+    return value
+
+
+def _cap_rates(value: list[float]) -> list[float]:
+    cap = get_settings().max_rates
+    if len(value) > cap:
+        raise ValueError(f"at most {cap} rates per request, got {len(value)}")
+    return value
+
+
+Delta = Annotated[float, AfterValidator(_check_delta)]
+GridSize = Annotated[int, Field(ge=10), AfterValidator(_cap_grid)]
+Rate = Annotated[float, Field(gt=0)]
+Rates = Annotated[list[Rate], Field(min_length=1), AfterValidator(_cap_rates)]
+
+
+class _Levels(BaseModel):
+    """Fc and Fs with the cross-constraint Fs ≥ Fc reported on ``Fs``."""
+
+    model_config = _STRICT
+
+    Fc: float = Field(DEFAULTS["Fc"], gt=0, description="Coulomb level [N], > 0")
+    Fs: float = Field(DEFAULTS["Fs"], gt=0, validate_default=True,
+                      description="Stribeck (stiction) level [N], >= Fc")
+
+    @field_validator("Fs")
+    @classmethod
+    def _fs_at_least_fc(cls, value: float, info: ValidationInfo) -> float:
+        Fc = info.data.get("Fc")
+        if Fc is not None and value < Fc:
+            raise ValueError(f"Fs must be >= Fc, got Fs={value} < Fc={Fc}")
+        return value
+
+
+# ---------------------------------------------------------------------------------
+# requests
+# ---------------------------------------------------------------------------------
+
+
+class ExploreGrid(BaseModel):
+    """Optional grid sizes of one frame (defaults: ``breakaway.frame.FRAME_GRID``)."""
+
+    model_config = _STRICT
+
+    stribeck: GridSize | None = Field(None, description="points of Fss(v)")
+    loop: GridSize | None = Field(None, description="samples of the hysteresis loop")
+    phase: GridSize | None = Field(None, description="points per phase curve")
+    breakaway: GridSize | None = Field(None, description="rates of the F_ba(k) curves")
+
+    def sizes(self) -> dict[str, int]:
+        return {key: value for key, value in self.model_dump().items() if value is not None}
+
+
+class ExploreRequest(_Levels):
+    """One explorer redraw; every field is optional (defaults: ``breakaway.params.DEFAULTS``)."""
+
+    V: float = Field(DEFAULTS["V"], gt=0, description="Stribeck velocity [m/s], > 0")
+    delta: Delta = Field(DEFAULTS["delta"], description="Stribeck shape exponent, |δ| ≥ 0.05")
+    sigma: float = Field(DEFAULTS["sigma"], ge=0, description="viscous coefficient [N·s/m], ≥ 0")
+    s: float = Field(DEFAULTS["s"], gt=0, description="presliding scale [1/m], > 0")
+    z_ba: float = Field(DEFAULTS["z_ba"], gt=0, lt=1, description="break-away fraction z*, in (0, 1)")
+    m: float = Field(DEFAULTS["m"], gt=0,
+                     description="moving mass [kg], > 0 (accepted for symmetry with "
+                                 "/api/simulate; the quasi-static frame does not use it)")
+    k: float = Field(DEFAULTS["k"], gt=0, description="current force rate [N/s], > 0")
+    F_hat: FHat = Field(DEFAULTS["F_hat"], description="level F̂ of (E12)")
+    grid: ExploreGrid | None = Field(None, description="grid sizes (capped)")
+
+    def params(self) -> dict[str, float | str]:
+        """The model parameters (keys of ``DEFAULTS``)."""
+        return self.model_dump(exclude={"grid"})
+
+
+class SimulateRequest(_Levels):
+    """Ramp simulation (E7) or LuGre at each rate in ``k``.
+
+    Omitted parameters take the model's defaults: ``breakaway.params.DEFAULTS`` for
+    ``presliding``, ``breakaway.params.LUGRE_1995`` for ``lugre``. For ``lugre`` the
+    request fields override LuGre's as ``Fc → Fc``, ``Fs → Fs``, ``V → vs``,
+    ``delta → delta``, ``sigma → sigma2``, ``m → m``, ``sigma0``, ``sigma1``;
+    ``s`` and ``z_ba`` do not exist in LuGre and are rejected.
+    """
+
+    model: Literal["presliding", "lugre"] = Field("presliding", description="which model")
+    k: Rates = Field(..., description="force rates [N/s], each > 0 (capped in number)")
+    V: float | None = Field(None, gt=0, description="Stribeck velocity [m/s] (LuGre: vs)")
+    delta: Delta | None = Field(None, description="shape exponent, |δ| ≥ 0.05")
+    sigma: float | None = Field(None, ge=0, description="viscous coefficient [N·s/m] (LuGre: σ2)")
+    s: float | None = Field(None, gt=0, description="presliding scale [1/m] (presliding only)")
+    z_ba: float | None = Field(None, gt=0, lt=1, description="break-away fraction z* (presliding only)")
+    m: float | None = Field(None, gt=0, description="moving mass [kg]")
+    sigma0: float | None = Field(None, gt=0, description="LuGre bristle stiffness [N/m] (lugre only)")
+    sigma1: float | None = Field(None, ge=0, description="LuGre bristle damping [N·s/m] (lugre only)")
+
+    @model_validator(mode="after")
+    def _fields_of_the_model(self) -> SimulateRequest:
+        unused = ("sigma0", "sigma1") if self.model == "presliding" else ("s", "z_ba")
+        for name in unused:
+            if getattr(self, name) is not None:
+                raise _field_error(name, getattr(self, name),
+                                   f"{name} is not a parameter of model {self.model!r}")
+        return self
+
+    def presliding_params(self) -> dict[str, float]:
+        """Keyword arguments of ``breakaway.dynamics.simulate_breakaway``."""
+        names = ("Fc", "Fs", "V", "delta", "sigma", "s", "m", "z_ba")
+        return {name: float(DEFAULTS[name] if getattr(self, name) is None else getattr(self, name))
+                for name in names}
+
+    def lugre_params(self) -> dict[str, float]:
+        """``LUGRE_1995`` with this request's overrides (``params`` of the LuGre simulation)."""
+        mapping = {"Fc": "Fc", "Fs": "Fs", "V": "vs", "delta": "delta", "sigma": "sigma2",
+                   "m": "m", "sigma0": "sigma0", "sigma1": "sigma1"}
+        params = dict(LUGRE_1995)
+        for field, key in mapping.items():
+            value = getattr(self, field)
+            if value is not None:
+                params[key] = float(value)
+        return params
+
+
+def _field_error(name: str, value: object, message: str):
+    """A pydantic ValidationError located at ``name`` (for checks across fields)."""
+    from pydantic_core import ValidationError
+
+    return ValidationError.from_exception_data(
+        "SimulateRequest",
+        [{"type": "value_error", "loc": (name,), "input": value, "ctx": {"error": message}}],
+    )
+
+
+# ---------------------------------------------------------------------------------
+# responses
+# ---------------------------------------------------------------------------------
+
+Floats = list[float | None]
+
+
+class StribeckCurve(BaseModel):
+    v: Floats = Field(description="velocity [m/s]")
+    F: Floats = Field(description="Fss(v) [N] (E2)")
+
+
+class HysteresisLoop(BaseModel):
+    x: Floats = Field(description="displacement [m]")
+    F: Floats = Field(description="friction [N] (E6')")
+
+
+class PhaseCurve(BaseModel):
+    k: float = Field(description="force rate [N/s]")
+    v: Floats = Field(description="ẋ(z) [m/s] (E12)")
+
+
+class PhaseFamily(BaseModel):
+    z: Floats = Field(description="normalised presliding distance [-]")
+    curves: list[PhaseCurve] = Field(description="the note's Fig. 3 rates, then the current k")
+
+
+class BreakawayCurves(BaseModel):
+    model_config = ConfigDict(populate_by_name=True)
+
+    k: Floats = Field(description="force rate grid [N/s]")
+    Fc: Floats = Field(description="F_ba(k) with F̂ = Fc [N] (E13)")
+    Fs: Floats = Field(description="F_ba(k) with F̂ = Fs [N]")
+    avg: Floats = Field(description="F_ba(k) with F̂ = (Fc + Fs)/2 [N]")
+    self_: Floats = Field(alias="self", description="F_ba(k) with the self-consistent F̂ [N]")
+
+
+class ExploreResponse(BaseModel):
+    """The payload of one redraw. Floats carry ``settings.payload_digits`` significant
+    digits; a non-finite value is ``null``."""
+
+    stribeck: StribeckCurve
+    hysteresis: HysteresisLoop
+    phase: PhaseFamily
+    breakaway: BreakawayCurves
+
+
+class SimulateResponse(BaseModel):
+    """Break-away of the simulated ramp at each rate; ``null`` where none happened
+    within the step budget."""
+
+    model: Literal["presliding", "lugre"]
+    k: list[float] = Field(description="force rates [N/s]")
+    u_ba: Floats = Field(description="actuation force k·t_ba at break-away [N]")
+    F_ba: Floats = Field(description="friction at break-away [N] (LuGre: first local max)")
+    t_ba: Floats = Field(description="break-away time [s]")
+    reversals: list[int] = Field(description="motion reversals before break-away")
+    params: dict[str, float] = Field(description="the parameters the simulation used")
+
+
+class Preset(BaseModel):
+    name: str
+    description: str
+    params: dict[str, float | str]
+
+
+class PresetsResponse(BaseModel):
+    presets: list[Preset]
+    defaults: dict[str, float | str] = Field(description="breakaway.params.DEFAULTS")
+    lugre_1995: dict[str, float] = Field(description="LuGre (1995) parameters of /api/simulate")
 
 
 class Health(BaseModel):

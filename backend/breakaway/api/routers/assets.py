@@ -1,0 +1,60 @@
+"""Files the frontend needs that are not in frontend/: Plotly and the API docs page.
+
+``plotly.min.js`` comes from the installed plotly package, so the explorer works with
+no network. The docs page loads Swagger UI from its CDN through an external init script
+(the CSP allows no inline script).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import plotly
+from fastapi import APIRouter
+from fastapi.responses import FileResponse, HTMLResponse, Response
+
+router = APIRouter(include_in_schema=False)
+
+PLOTLY_JS = Path(plotly.__file__).resolve().parent / "package_data" / "plotly.min.js"
+_SWAGGER = "https://cdn.jsdelivr.net/npm/swagger-ui-dist@5"
+
+_DOCS_HTML = f"""<!doctype html>
+<html lang="en">
+<head>
+<meta charset="utf-8">
+<title>Breakaway API</title>
+<link rel="stylesheet" href="{_SWAGGER}/swagger-ui.css">
+</head>
+<body>
+<div id="swagger-ui"><p>The interactive docs load Swagger UI from {_SWAGGER};
+without network the schema is at <a href="/openapi.json">/openapi.json</a>.</p></div>
+<script src="{_SWAGGER}/swagger-ui-bundle.js"></script>
+<script src="/docs/init.js"></script>
+</body>
+</html>
+"""
+
+_DOCS_INIT = """window.ui = SwaggerUIBundle({
+  url: "/openapi.json",
+  dom_id: "#swagger-ui",
+  presets: [SwaggerUIBundle.presets.apis],
+  layout: "BaseLayout",
+  deepLinking: true,
+});
+"""
+
+
+@router.get("/vendor/plotly.min.js")
+def plotly_js() -> FileResponse:
+    return FileResponse(PLOTLY_JS, media_type="text/javascript",
+                        headers={"Cache-Control": "public, max-age=86400"})
+
+
+@router.get("/docs")
+def docs() -> HTMLResponse:
+    return HTMLResponse(_DOCS_HTML)
+
+
+@router.get("/docs/init.js")
+def docs_init() -> Response:
+    return Response(_DOCS_INIT, media_type="text/javascript")

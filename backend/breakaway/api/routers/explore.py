@@ -1,0 +1,23 @@
+"""POST /api/explore: everything one redraw of the explorer needs (MODEL.md §9)."""
+
+from __future__ import annotations
+
+from fastapi import APIRouter
+
+from ...frame import explore_frame
+from ..encoding import FrameResponse
+from ..errors import model_errors
+from ..schemas import ExploreRequest, ExploreResponse
+
+router = APIRouter(prefix="/api", tags=["explore"])
+
+
+@router.post("/explore", response_class=FrameResponse,
+             responses={200: {"model": ExploreResponse}})
+async def explore(request: ExploreRequest) -> FrameResponse:
+    """Stribeck curve, hysteresis loop, phase family and break-away curves for one
+    parameter set. ``async`` on purpose: the frame is ~1 ms of numpy, cheaper to run
+    on the event loop than to hand to a thread."""
+    with model_errors(ExploreRequest.model_fields.keys()):
+        frame = explore_frame(request.params(), grid=request.grid.sizes() if request.grid else None)
+    return FrameResponse(frame)

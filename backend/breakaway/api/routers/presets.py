@@ -1,0 +1,20 @@
+"""GET /api/presets: the explorer's named parameter sets and the defaults."""
+
+from __future__ import annotations
+
+from fastapi import APIRouter
+
+from ...params import DEFAULTS, LUGRE_1995, PRESET_DESCRIPTIONS, PRESETS
+from ..schemas import Preset, PresetsResponse
+
+router = APIRouter(prefix="/api", tags=["presets"])
+
+
+@router.get("/presets", response_model=PresetsResponse)
+def presets() -> PresetsResponse:
+    return PresetsResponse(
+        presets=[Preset(name=name, description=PRESET_DESCRIPTIONS.get(name, ""), params=params)
+                 for name, params in PRESETS.items()],
+        defaults=DEFAULTS,
+        lugre_1995=LUGRE_1995,
+    )

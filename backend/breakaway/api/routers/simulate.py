@@ -1,0 +1,34 @@
+"""POST /api/simulate: break-away of the simulated ramp experiment (MODEL.md §5, §9)."""
+
+from __future__ import annotations
+
+from fastapi import APIRouter, Request
+
+from ...settings import get_settings
+from ..errors import model_errors, unprocessable
+from ..schemas import SimulateRequest, SimulateResponse
+from ..simulation import SimulationTimeout
+
+router = APIRouter(prefix="/api", tags=["simulate"])
+
+
+@router.post("/simulate", response_model=SimulateResponse,
+             responses={422: {"description": "invalid parameters, or over the time budget"}})
+async def simulate(body: SimulateRequest, request: Request) -> SimulateResponse:
+    """Simulate ``m·ẍ + F = k·t`` (``presliding``, E7) or LuGre for each rate.
+
+    Runs in the server's simulation worker process with a wall-clock budget
+    (``BREAKAWAY_SIMULATE_TIMEOUT_S``); over it the answer is a 422. A rate that does
+    not break away within ``BREAKAWAY_SIMULATE_MAX_STEPS`` steps reports ``null``.
+    """
+    settings = get_settings()
+    params = body.lugre_params() if body.model == "lugre" else body.presliding_params()
+    try:
+        with model_errors(SimulateRequest.model_fields.keys()):
+            result = await request.app.state.simulations.run(
+                settings.simulate_timeout_s, body.model, body.k, params,
+                settings.simulate_max_steps)
+    except SimulationTimeout as exc:
+        return unprocessable([{"type": "simulation_timeout", "loc": ["body", "k"],
+                               "msg": f"{exc}; ask for fewer or larger rates"}])
+    return SimulateResponse(model=body.model, params=params, **result)

@@ -1,0 +1,103 @@
+"""Ramp simulations in a worker process, so a slow one never blocks the explorer.
+
+The compiled integrator holds the GIL for the whole run, and a run with strong
+velocity weakening at a small rate can chatter through thousands of reversals
+(seconds). In a thread it would stall every other request of the server; in one worker
+process the event loop stays free for ``/api/explore`` while the simulation runs, and
+a run over the wall-clock budget is ended by ending the process.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import logging
+import multiprocessing
+import threading
+from concurrent.futures import Future, ProcessPoolExecutor
+from concurrent.futures.process import BrokenProcessPool
+from typing import Any
+
+log = logging.getLogger("breakaway.api")
+
+
+class SimulationTimeout(Exception):
+    """The simulation did not finish within its wall-clock budget."""
+
+
+def run_simulation(model: str, k: list[float], params: dict[str, float],
+                   max_steps: int) -> dict[str, Any]:
+    """Worker entry point: break-away of each rate for ``presliding`` or ``lugre``."""
+    from ..dynamics import simulate_breakaway, simulate_lugre_breakaway
+
+    if model == "lugre":
+        result = simulate_lugre_breakaway(k, params, max_steps=max_steps)
+    else:
+        result = simulate_breakaway(k, max_steps=max_steps, **params)
+    return {
+        "k": result.k.tolist(),
+        "u_ba": _nullable(result.u_ba),
+        "F_ba": _nullable(result.F_ba),
+        "t_ba": _nullable(result.t_ba),
+        "reversals": [int(n) for n in result.reversals],
+    }
+
+
+def _nullable(values) -> list[float | None]:
+    return [float(v) if v == v and abs(v) != float("inf") else None for v in values]
+
+
+def _warm_up() -> bool:
+    """Load the compiled integrator in the worker (numba's disk cache: ~0.3 s)."""
+    run_simulation("presliding", [1.0], {}, 10_000)
+    return True
+
+
+class SimulationRunner:
+    """One worker process, started lazily (or at start-up), replaced after a timeout."""
+
+    def __init__(self) -> None:
+        self._pool: ProcessPoolExecutor | None = None
+        self._lock = threading.Lock()
+
+    def _executor(self) -> ProcessPoolExecutor:
+        with self._lock:
+            if self._pool is None:
+                context = multiprocessing.get_context("spawn")
+                self._pool = ProcessPoolExecutor(max_workers=1, mp_context=context)
+            return self._pool
+
+    def warm_up(self) -> Future:
+        return self._executor().submit(_warm_up)
+
+    async def run(self, timeout: float, *args: Any) -> dict[str, Any]:
+        """``run_simulation(*args)`` in the worker; a worker that died is replaced once."""
+        for attempt in (1, 2):
+            try:
+                future = self._executor().submit(run_simulation, *args)
+                return await asyncio.wait_for(asyncio.wrap_future(future), timeout)
+            except asyncio.TimeoutError:
+                self._restart()
+                raise SimulationTimeout(
+                    f"the simulation took longer than {timeout:g} s") from None
+            except BrokenProcessPool:
+                log.warning("simulation worker died (attempt %d); starting a new one", attempt)
+                self._restart()
+                if attempt == 2:
+                    raise
+        raise AssertionError("unreachable")
+
+    def _restart(self) -> None:
+        """End the worker that is stuck in a long run; the next request starts a new one."""
+        with self._lock:
+            pool, self._pool = self._pool, None
+        if pool is None:
+            return
+        for process in list(getattr(pool, "_processes", {}).values()):
+            process.kill()
+        pool.shutdown(wait=False, cancel_futures=True)
+
+    def shutdown(self) -> None:
+        with self._lock:
+            pool, self._pool = self._pool, None
+        if pool is not None:
+            pool.shutdown(wait=False, cancel_futures=True)
