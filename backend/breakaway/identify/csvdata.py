@@ -388,9 +388,9 @@ def parse_csv(data: bytes | str, kind: str | None = None, max_bytes: int = DEFAU
         header_idx = i
         break
     if header_idx is None:
-        if not text.strip():
-            raise DataError("the file is empty: expected a header line naming the columns")
-        raise DataError("no header line: the file has only comment and metadata lines")
+        if any(line.lstrip().startswith("#") for line in lines):
+            raise DataError("no header line: the file has only comment and metadata lines")
+        raise DataError("the file is empty: expected a header line naming the columns")
     header_line = header_idx + 1
     header = _split(lines[header_idx].strip())
 
@@ -504,7 +504,7 @@ def parse_csv(data: bytes | str, kind: str | None = None, max_bytes: int = DEFAU
                 f"at least {MIN_ROWS} are required"
             )
         raise DataError(
-            f"only {n} data row{'s' if n != 1 else ''} (lines {line_no[0]}–{line_no[-1]}); "
+            f"only {n} data row{'s' if n != 1 else ''} (lines {line_no[0]} to {line_no[-1]}); "
             f"at least {MIN_ROWS} are required"
         )
 
