@@ -1,0 +1,1 @@
+"""Identification: fit measured data, trace the residual to a missing effect, report."""
