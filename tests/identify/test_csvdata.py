@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import pickle
-import time
 
 import numpy as np
 import pytest
@@ -595,27 +594,19 @@ def test_read_csv_missing_file(tmp_path):
         read_csv(tmp_path / "nope.csv")
 
 
-# ----------------------------------------------------------------------------- speed
+# ------------------------------------------------------------------- large files
+# (speed is measured in benchmarks/bench_identify.py, never asserted in a test)
 
 
-def test_20000_rows_parse_fast():
+def test_20000_rows_round_trip():
     n = 20_000
     cols = columns_for("timeseries", n)
-    data = make_csv(cols, meta={"source": "generated"}).encode()
-    best = float("inf")
-    for _ in range(5):
-        t0 = time.perf_counter()
-        ds = parse_csv(data)
-        best = min(best, time.perf_counter() - t0)
+    ds = parse_csv(make_csv(cols, meta={"source": "generated"}).encode())
     assert ds.n == n
     np.testing.assert_allclose(ds.columns["x"], cols["x"], rtol=0, atol=1e-12)
-    assert best < 0.1, f"20,000 rows took {best * 1e3:.0f} ms"
 
 
-def test_error_in_large_file_is_located_quickly():
+def test_error_in_large_file_is_located():
     cols = with_cell(columns_for("timeseries", 20_000), "x", 15_000, "1.2.3")
-    data = make_csv(cols).encode()
-    t0 = time.perf_counter()
     with pytest.raises(DataError, match=r"line 15002, column 'x': '1\.2\.3' is not a number"):
-        parse_csv(data)
-    assert time.perf_counter() - t0 < 0.5
+        parse_csv(make_csv(cols).encode())
