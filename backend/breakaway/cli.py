@@ -19,6 +19,25 @@ def _serve(args: argparse.Namespace) -> int:
     return 0
 
 
+def _fit(args: argparse.Namespace) -> int:
+    import json
+
+    from .identify import DataError, FitError, identify, read_csv
+    from .identify.text import format_report
+
+    try:
+        data = read_csv(args.file, kind=args.kind)
+        result = identify(data)
+    except (DataError, FitError) as err:
+        print(f"breakaway fit: {args.file}: {err}", file=sys.stderr)
+        return 2
+    if args.json:
+        print(json.dumps(result, indent=2))
+    else:
+        print(format_report(result, source=args.file), end="")
+    return 0
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(prog="breakaway", description=__doc__)
     parser.add_argument("--version", action="version", version=f"breakaway {__version__}")
@@ -27,6 +46,12 @@ def build_parser() -> argparse.ArgumentParser:
     serve.add_argument("--host", default=None, help="bind address (default 127.0.0.1)")
     serve.add_argument("--port", type=int, default=None, help="port (default 8000)")
     serve.set_defaults(handler=_serve)
+    fit = commands.add_parser("fit", help="fit a measured CSV and report the effects found")
+    fit.add_argument("file", help="CSV file (MODEL.md §6)")
+    fit.add_argument("--kind", choices=("timeseries", "steady", "breakaway"), default=None,
+                     help="data kind (default: from a '# kind:' line or the columns)")
+    fit.add_argument("--json", action="store_true", help="print the JSON report (MODEL.md §8)")
+    fit.set_defaults(handler=_fit)
     return parser
 
 

@@ -13,16 +13,17 @@ from .. import __version__
 from ..settings import get_settings
 from .errors import request_validation_handler
 from .middleware import BodySizeLimit, CatchAll, SecurityHeaders
-from .routers import assets, explore, health, presets, simulate
+from .fitjobs import FitJobs
+from .routers import assets, explore, fit, health, presets, simulate
 from .simulation import SimulationRunner
 
-#: The API, one router per resource. The identification engine adds its router
-#: (``routers/fit.py``: ``POST /api/fit``) to this list.
+#: The API, one router per resource.
 ROUTERS: list[APIRouter] = [
     health.router,
     presets.router,
     explore.router,
     simulate.router,
+    fit.router,
     assets.router,
 ]
 
@@ -34,6 +35,7 @@ async def lifespan(app: FastAPI) -> AsyncIterator[None]:
         yield
     finally:
         app.state.simulations.shutdown()
+        app.state.fit_jobs.shutdown()
 
 
 def create_app() -> FastAPI:
@@ -43,6 +45,7 @@ def create_app() -> FastAPI:
                   description="Ruderman's break-away friction model: explorer API "
                               "(MODEL.md §9). Interactive docs at /docs.")
     app.state.simulations = SimulationRunner()
+    app.state.fit_jobs = FitJobs()
     app.add_exception_handler(RequestValidationError, request_validation_handler)
     for router in ROUTERS:
         app.include_router(router)

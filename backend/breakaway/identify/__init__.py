@@ -1,1 +1,23 @@
-"""Identification: fit measured data, trace the residual to a missing effect, report."""
+"""Identification: fit measured data, trace the residual to the effect the model lacks,
+add it, and report the error before and after (MODEL.md §6–§8).
+
+>>> from breakaway.identify import read_csv, identify
+>>> report = identify(read_csv("run.csv"))          # doctest: +SKIP
+"""
+
+from __future__ import annotations
+
+from .csvdata import DataError, Dataset, parse_csv, read_csv
+from .diagnosis import Diagnosis, diagnose, report
+from .effects import EFFECTS, candidates
+from .fitting import FitError, FitResult, fit_model
+
+
+def identify(data: Dataset, progress=None) -> dict:
+    """The §8 report of ``data`` (see :func:`breakaway.identify.diagnosis.diagnose`)."""
+    return report(diagnose(data, progress))
+
+
+__all__ = ["DataError", "Dataset", "Diagnosis", "EFFECTS", "FitError", "FitResult",
+           "candidates", "diagnose", "fit_model", "identify", "parse_csv", "read_csv",
+           "report"]

@@ -159,8 +159,8 @@ def signature(effect: str, problem: Problem, residual: np.ndarray, params: dict)
         if kind == "breakaway":
             return (f"the break-away force differs by direction: residual {_fmt(mp)} N for "
                     f"direction +1 and {_fmt(mn)} N for direction -1")
-        return (f"the sliding levels differ by direction: |F| exceeds the model by "
-                f"{_fmt(mp)} N moving positive and by {_fmt(-mn)} N moving negative")
+        return (f"the sliding levels differ by direction: measured |F| minus the model's "
+                f"is {mp:+.3g} N moving positive and {-mn:+.3g} N moving negative")
     if effect == "drift":
         c = _corr(r[sliding] * d[sliding], problem.t[sliding])
         return f"the sliding-level error changes steadily with time (r = {c:.2f} against t)"

@@ -1,0 +1,54 @@
+"""Pydantic models of the fit endpoints (MODEL.md §8, §9)."""
+
+from __future__ import annotations
+
+from typing import Literal
+
+from pydantic import BaseModel, ConfigDict
+
+
+class ModelFit(BaseModel):
+    params: dict[str, float | None]
+    stderr: dict[str, float | None]
+    rmse: float | None
+    bic: float | None
+
+
+class FitStep(ModelFit):
+    effect: str
+    evidence: str
+
+
+class HeldOut(BaseModel):
+    before: float | None
+    after: float | None
+
+
+class FitReport(BaseModel):
+    """The §8 identification report."""
+
+    model_config = ConfigDict(extra="allow")
+
+    kind: Literal["timeseries", "steady", "breakaway"]
+    n: int
+    noise_floor: float | None
+    base: ModelFit
+    steps: list[FitStep]
+    effects: list[str]
+    final: ModelFit
+    error_before: float | None
+    error_after: float | None
+    heldout: HeldOut
+    residual_white: bool
+    unexplained: bool
+
+
+class FitJobStatus(BaseModel):
+    id: str
+    source: str
+    status: Literal["queued", "running", "done", "error", "cancelled"]
+    progress: float
+    message: str
+    error: str | None = None
+    report: FitReport | None = None
+    series: dict | None = None

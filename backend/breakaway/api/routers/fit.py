@@ -1,0 +1,104 @@
+"""POST /api/fit and the fit jobs: upload a CSV (MODEL.md §6), get the §8 report."""
+
+from __future__ import annotations
+
+from fastapi import APIRouter, File, Form, Request, UploadFile
+from fastapi.concurrency import run_in_threadpool
+from fastapi.responses import PlainTextResponse, Response
+
+from ...identify import DataError, FitError, identify, parse_csv
+from ...settings import get_settings
+from ..errors import unprocessable
+from ..fit_schemas import FitJobStatus, FitReport
+from ..fitjobs import Busy
+
+router = APIRouter(prefix="/api", tags=["fit"])
+
+_KIND_HELP = "timeseries, steady or breakaway; default: a '# kind:' line or the columns"
+
+
+def _data_error(err: DataError, field: str = "file") -> Response:
+    detail = {"type": "data_error", "loc": ["body", field], "msg": str(err)}
+    # line and column of the CSV are part of the message; also give them as fields
+    body = {"detail": [{**detail, "line": err.line, "column": err.column}]}
+    import orjson
+
+    return Response(orjson.dumps(body), status_code=422, media_type="application/json")
+
+
+async def _read_upload(file: UploadFile) -> bytes:
+    limit = get_settings().max_upload_bytes
+    data = await file.read(limit + 1)
+    if len(data) > limit:
+        raise DataError(f"file is over the upload limit of {limit / 1e6:.1f} MB")
+    return data
+
+
+async def _parse(file: UploadFile, kind: str | None):
+    data = await _read_upload(file)
+    return await run_in_threadpool(parse_csv, data, kind or None,
+                                   get_settings().max_upload_bytes)
+
+
+@router.post("/fit", response_model=FitReport,
+             responses={422: {"description": "bad CSV: the message names line and column"}})
+async def fit(file: UploadFile = File(..., description="CSV file, MODEL.md §6"),
+              kind: str | None = Form(None, description=_KIND_HELP)) -> FitReport | Response:
+    """Fit the base model, trace the residual to missing effects, and report (§8).
+
+    The work runs in a worker thread, so the server keeps answering meanwhile.
+    """
+    try:
+        dataset = await _parse(file, kind)
+        return FitReport(**await run_in_threadpool(identify, dataset))
+    except DataError as err:
+        return _data_error(err)
+    except FitError as err:
+        return unprocessable([{"type": "fit_error", "loc": ["body", "file"], "msg": str(err)}])
+
+
+@router.post("/fit/jobs", response_model=FitJobStatus, status_code=202)
+async def start_fit(request: Request, file: UploadFile = File(...),
+                    kind: str | None = Form(None, description=_KIND_HELP)) -> FitJobStatus | Response:
+    """Start a fit in the background; poll ``GET /api/fit/jobs/{id}`` for progress."""
+    try:
+        dataset = await _parse(file, kind)
+    except DataError as err:
+        return _data_error(err)
+    try:
+        job = request.app.state.fit_jobs.submit(dataset, file.filename or "upload.csv")
+    except Busy as err:
+        return Response(f'{{"detail": "{err}"}}', status_code=429, media_type="application/json")
+    return _status(job)
+
+
+def _status(job) -> FitJobStatus:
+    return FitJobStatus(id=job.id, source=job.source, status=job.status, progress=job.progress,
+                        message=job.message, error=job.error, report=job.report,
+                        series=job.series)
+
+
+def _not_found(job_id: str) -> Response:
+    return Response('{"detail": "no such fit job"}', status_code=404,
+                    media_type="application/json")
+
+
+@router.get("/fit/jobs/{job_id}", response_model=FitJobStatus)
+async def fit_status(job_id: str, request: Request) -> FitJobStatus | Response:
+    job = request.app.state.fit_jobs.get(job_id)
+    return _not_found(job_id) if job is None else _status(job)
+
+
+@router.delete("/fit/jobs/{job_id}", response_model=FitJobStatus)
+async def cancel_fit(job_id: str, request: Request) -> FitJobStatus | Response:
+    job = request.app.state.fit_jobs.cancel(job_id)
+    return _not_found(job_id) if job is None else _status(job)
+
+
+@router.get("/fit/jobs/{job_id}/residuals.csv", response_class=PlainTextResponse)
+async def fit_residuals(job_id: str, request: Request) -> Response:
+    job = request.app.state.fit_jobs.get(job_id)
+    if job is None or job.residuals is None:
+        return _not_found(job_id)
+    return PlainTextResponse(job.residuals, media_type="text/csv", headers={
+        "content-disposition": 'attachment; filename="residuals.csv"'})

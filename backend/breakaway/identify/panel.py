@@ -1,0 +1,77 @@
+"""What the explorer's data panel plots: measured F, the base and final models, the
+residuals before and after, and the regressor each accepted effect was traced to."""
+
+from __future__ import annotations
+
+import io
+
+import numpy as np
+
+from .diagnosis import Diagnosis
+
+#: Which regressor shows each effect's signature (the x-axis of its residual plot).
+EFFECT_REGRESSOR = {
+    "timeseries": {"viscous": "v", "asymmetry": "v", "offset": "t", "drift": "t",
+                   "inertia": "a", "ripple": "x", "lag": "v", "backlash": "x"},
+    "steady": {"viscous": "v", "asymmetry": "v", "offset": "v"},
+    "breakaway": {"viscous": "k", "asymmetry": "direction", "inertia": "k", "dwell": "dwell"},
+}
+#: The axis of the main plot per kind.
+MAIN_AXIS = {"timeseries": "t", "steady": "v", "breakaway": "k"}
+
+
+def _regressors(diagnosis: Diagnosis) -> dict[str, np.ndarray]:
+    problem = diagnosis.base.problem
+    kind = diagnosis.data.kind
+    if kind == "timeseries":
+        return {"t": problem.t, "x": problem.x, "v": problem.v, "a": problem.a}
+    if kind == "steady":
+        return {"v": problem.v}
+    return {"k": problem.k, "direction": problem.direction, "dwell": problem.dwell}
+
+
+def series(diagnosis: Diagnosis, max_points: int = 4000) -> dict:
+    """Plot data for the panel, every ``stride``-th row so at most ``max_points`` rows.
+
+    Returns
+    -------
+    dict
+        ``axis`` (name of the main x-axis), ``columns`` (regressors, ``measured``,
+        ``base``, ``final``, ``residual_before``, ``residual_after`` as lists) and
+        ``effect_regressor`` (effect → column name).
+    """
+    kind = diagnosis.data.kind
+    measured = diagnosis.base.problem.measured
+    columns = {
+        **_regressors(diagnosis),
+        "measured": measured,
+        "base": diagnosis.base.prediction,
+        "final": diagnosis.final.prediction,
+        "residual_before": measured - diagnosis.base.prediction,
+        "residual_after": measured - diagnosis.final.prediction,
+    }
+    order = np.argsort(columns[MAIN_AXIS[kind]], kind="stable")
+    stride = max(1, -(-order.size // max_points))
+    keep = order[::stride]
+    return {
+        "axis": MAIN_AXIS[kind],
+        "stride": stride,
+        "columns": {name: np.asarray(values, float)[keep].tolist()
+                    for name, values in columns.items()},
+        "effect_regressor": {e: EFFECT_REGRESSOR[kind][e] for e in diagnosis.effects},
+    }
+
+
+def residuals_csv(diagnosis: Diagnosis) -> str:
+    """Every row: the regressors, measured F, both models and both residuals, as CSV."""
+    kind = diagnosis.data.kind
+    measured = diagnosis.base.problem.measured
+    columns = {**_regressors(diagnosis), "F_measured": measured,
+               "F_base": diagnosis.base.prediction, "F_final": diagnosis.final.prediction,
+               "residual_before": measured - diagnosis.base.prediction,
+               "residual_after": measured - diagnosis.final.prediction}
+    out = io.StringIO()
+    out.write(f"# kind: {kind}\n# effects: {' '.join(diagnosis.effects) or 'none'}\n")
+    out.write(",".join(columns) + "\n")
+    np.savetxt(out, np.column_stack(list(columns.values())), delimiter=",", fmt="%.9g")
+    return out.getvalue()
