@@ -10,7 +10,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from .params import check_positive, check_stribeck
+from .params import _finite, check_positive, check_stribeck
 from .steady import stribeck_magnitude
 
 
@@ -105,10 +105,12 @@ def presliding_force_from_target(x, target, s, F0=0.0, direction=None):
     The building block that effects (asymmetric levels, lag, drift) reuse: they change
     the target, not the reversal memory.
     """
+    check_positive(s=s)
+    F0 = _finite("F0", F0)
     x = np.asanyarray(x, dtype=float)
     d = motion_direction(x) if direction is None else np.asanyarray(direction, dtype=float)
     target = np.asanyarray(target, dtype=float)
-    return _presliding_kernel(x, d, target, float(s), float(F0))
+    return _presliding_kernel(x, d, target, float(s), F0)
 
 
 def presliding_force(t, x, Fc, Fs, V, delta, s, sigma=0.0, F0=0.0):
@@ -138,6 +140,7 @@ def presliding_force(t, x, Fc, Fs, V, delta, s, sigma=0.0, F0=0.0):
     """
     check_stribeck(Fc, Fs, V, delta, sigma)
     check_positive(s=s)
+    F0 = _finite("F0", F0)
     t = np.asanyarray(t, dtype=float)
     x = np.asanyarray(x, dtype=float)
     v = np.gradient(x, t)
@@ -177,6 +180,7 @@ def hysteresis_loop(Fc, Fs, V, delta, s, sigma=0.0, amplitude=1.5, n=2000,
     x, F : numpy.ndarray
         Displacement [m] and friction [N].
     """
+    check_stribeck(Fc, Fs, V, delta, sigma)  # before V is used for the default peak speed
     check_positive(amplitude=amplitude, s=s)
     if n < 10:
         raise ValueError(f"n must be >= 10, got {n}")
