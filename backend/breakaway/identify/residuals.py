@@ -13,65 +13,69 @@ from .models import Problem
 _MAD_TO_STD = 1.4826
 
 
-def _difference_sigma(values, order):
-    """Noise std from ``order``-th differences: MAD of Δ^q F / sqrt(C(2q, q))."""
-    if values.size <= order + 2:
+def _replicate_sigma(F, keys):
+    """Pooled within-group std of rows sharing ``keys`` (NaN with too few replicates)."""
+    _, inverse, counts = np.unique(keys, axis=0, return_inverse=True, return_counts=True)
+    inverse = inverse.ravel()
+    replicated = counts[inverse] >= 2
+    if replicated.sum() < max(6, 0.3 * F.size):
         return math.nan
-    e = np.diff(values, order) / math.sqrt(comb(2 * order, order))
-    return _MAD_TO_STD * float(np.median(np.abs(e)))
+    means = np.bincount(inverse, F) / counts
+    dev = F[replicated] - means[inverse[replicated]]
+    dof = replicated.sum() - np.count_nonzero(counts >= 2)
+    return float(math.sqrt(np.dot(dev, dev) / max(dof, 1)))
 
 
-def _groups(problem: Problem):
-    """Row groups ordered by the regressor, inside which F varies smoothly."""
+def _groupings(problem: Problem):
+    """Ways to split the rows into groups ordered by the regressor, inside which F varies
+    smoothly; the first is the finest."""
     kind = problem.data.kind
     if kind == "timeseries":
-        return [np.arange(problem.data.n)]
+        return [[np.arange(problem.data.n)]]
     if kind == "steady":
         order = np.argsort(problem.v, kind="stable")
         v = problem.v[order]
-        return [order[v < 0], order[v > 0]]
+        return [[order[v < 0], order[v > 0]]]
     keys = np.column_stack([problem.direction, problem.dwell])
     order = np.lexsort((problem.k, problem.dwell, problem.direction))
-    groups = [order[np.all(keys[order] == key, axis=1)] for key in np.unique(keys, axis=0)]
-    if sum(g.size for g in groups if g.size >= 5) < 0.5 * problem.data.n:
-        # dwell (or direction) varies row by row: F is smooth along k only per direction
-        order = np.lexsort((problem.k, problem.direction))
-        groups = [order[problem.direction[order] == value]
-                  for value in np.unique(problem.direction)]
-    return groups
+    fine = [order[np.all(keys[order] == key, axis=1)] for key in np.unique(keys, axis=0)]
+    # dwell may not matter: then rows at one rate are replicates along k per direction
+    order = np.lexsort((problem.k, problem.direction))
+    coarse = [order[problem.direction[order] == value] for value in np.unique(problem.direction)]
+    return [fine, coarse]
+
+
+def _groups(problem: Problem):
+    return _groupings(problem)[0]
 
 
 def noise_floor(problem: Problem) -> float:
     """Model-free estimate of the measurement noise std [N].
 
-    Rows with the same regressor (replicates) give the noise directly (pooled within
-    groups). Otherwise F is taken as smooth along time (``timeseries``) or along the
-    regressor (``steady``: v, ``breakaway``: k): robust (MAD) estimates from second and
-    third differences, the smaller of the two, which leaks the least signal.
+    Each estimate below is unbiased when its assumption holds and too high otherwise, so
+    the smallest is taken. Rows with the same regressor (replicates) give the noise
+    directly (pooled within groups). Otherwise F is taken as smooth along time
+    (``timeseries``) or along the regressor (``steady``: v, ``breakaway``: k, per direction and dwell, or per
+    direction only): robust (MAD) estimates from second and third differences.
     """
     F = problem.measured
     kind = problem.data.kind
-    if kind != "timeseries":
-        regressor = problem.v if kind == "steady" else np.column_stack(
-            [problem.k, problem.direction, problem.dwell])
-        _, inverse, counts = np.unique(regressor, axis=0, return_inverse=True,
-                                       return_counts=True)
-        inverse = inverse.ravel()
-        replicated = counts[inverse] >= 2
-        if replicated.sum() >= max(6, 0.3 * F.size):
-            means = np.bincount(inverse, F) / counts
-            dev = F[replicated] - means[inverse[replicated]]
-            dof = replicated.sum() - np.count_nonzero(counts >= 2)
-            return float(math.sqrt(np.dot(dev, dev) / max(dof, 1)))
     estimates = []
-    for order in (2, 3):
-        diffs = []
-        for members in _groups(problem):
-            if members.size > order + 2:
-                diffs.append(np.diff(F[members], order) / math.sqrt(comb(2 * order, order)))
-        if diffs:
-            e = np.concatenate(diffs)
-            estimates.append(_MAD_TO_STD * float(np.median(np.abs(e))))
+    if kind == "steady":
+        estimates.append(_replicate_sigma(F, problem.v[:, None]))
+    elif kind == "breakaway":
+        estimates.append(_replicate_sigma(F, np.column_stack(
+            [problem.k, problem.direction, problem.dwell])))
+        # if dwell does not matter, rows at one rate and direction are replicates too
+        estimates.append(_replicate_sigma(F, np.column_stack([problem.k, problem.direction])))
+    for groups in _groupings(problem):
+        for order in (2, 3):
+            diffs = [np.diff(F[g], order) / math.sqrt(comb(2 * order, order))
+                     for g in groups if g.size > order + 2]
+            if diffs:
+                e = np.concatenate(diffs)
+                estimates.append(_MAD_TO_STD * float(np.median(np.abs(e))))
+    estimates = [e for e in estimates if math.isfinite(e)]
     floor = min(estimates) if estimates else math.nan
     if not floor > 0:
         # quantised, noiseless data: the quantisation step's uniform noise

@@ -31,7 +31,7 @@ def effect_truth(kind: str, effect: str, base: dict, problem: Problem | None = N
     Fc, Fs = base["Fc"], base["Fs"]
     if effect == "viscous":
         speed = problem.scales.speed if problem is not None else 1.0
-        return {"sigma": 0.08 * Fc / speed}
+        return {"sigma": 0.2 * Fc / speed}
     if effect == "asymmetry":
         # a different scale per direction (a pure shift of both levels would be an offset)
         return {"Fc_neg": 0.8 * Fc, "Fs_neg": 0.7 * Fs}
@@ -114,7 +114,10 @@ def _skeleton(kind, rng, n):
     k = np.repeat(np.sort(np.concatenate([np.geomspace(0.01, 30.0, levels - levels // 2),
                                           np.linspace(2.0, 30.0, levels // 2)])), 4)
     direction = np.tile([1.0, -1.0], k.size // 2)
-    dwell = np.tile([0.5, 0.5, 30.0, 30.0], k.size // 4)
+    # four dwell times over three decades, rotated so each meets both directions
+    levels_of_dwell = np.array([0.2, 2.0, 20.0, 200.0])
+    row, rate_level = np.arange(k.size) % 4, np.arange(k.size) // 4
+    dwell = levels_of_dwell[(row + rate_level) % 4]
     return _dataset(kind, {"k": k, "F_ba": np.zeros(k.size), "direction": direction,
                            "dwell": dwell}, {"s": "1"})
 
