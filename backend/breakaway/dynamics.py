@@ -33,7 +33,7 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
-from .params import LUGRE_1995, check_fraction, check_positive, check_stribeck
+from .params import LUGRE_1995, _finite, check_fraction, check_positive, check_stribeck
 
 # ---------------------------------------------------------------------------------
 # shared model pieces
@@ -500,11 +500,16 @@ def _presliding_problem(ks, Fc, Fs, V, delta, s, sigma, m, z_ba, rtol):
 
 def _lugre_problem(ks, params, rtol):
     _check_rtol(rtol)
+    unknown = sorted(set(params or {}) - set(LUGRE_1995))
+    if unknown:
+        raise ValueError(f"unknown LuGre parameter(s) {unknown}; known: {sorted(LUGRE_1995)}")
     q = {**LUGRE_1995, **(params or {})}
+    # the LuGre names first (vs, sigma2), then (E2)'s remaining constraints
+    check_positive(vs=q["vs"], sigma0=q["sigma0"], m=q["m"])
+    for name in ("sigma1", "sigma2"):
+        if _finite(name, q[name]) < 0:
+            raise ValueError(f"{name} must be >= 0, got {q[name]}")
     check_stribeck(q["Fc"], q["Fs"], q["vs"], q["delta"], q["sigma2"])
-    check_positive(sigma0=q["sigma0"], m=q["m"])
-    if q["sigma1"] < 0:
-        raise ValueError(f"sigma1 must be >= 0, got {q['sigma1']}")
     p = np.array([q["sigma0"], q["sigma1"], q["sigma2"], q["Fc"], q["Fs"], q["vs"],
                   q["delta"], q["m"], 0.0])
     bristle = q["Fs"] / q["sigma0"]  # bristle deflection at stiction [m]

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .params import FIG3_RATES, F_HAT_CHOICES, check_positive, with_defaults
+from .params import FIG3_RATES, F_HAT_CHOICES, check_positive, check_stribeck, with_defaults
 from .presliding import hysteresis_loop
 from .quasistatic import breakaway_force, phase_family
 from .steady import steady_state_force
@@ -20,6 +20,7 @@ FRAME_GRID = {
 
 def stribeck_curve(Fc, Fs, V, delta, sigma, n=400, v_max=None):
     """Fss on a symmetric velocity grid ``[-v_max, v_max]`` [m/s] (default 5·V)."""
+    check_stribeck(Fc, Fs, V, delta, sigma)  # before V sets the default v_max
     v_max = 5.0 * V if v_max is None else float(v_max)
     check_positive(v_max=v_max)
     v = np.linspace(-v_max, v_max, int(n))
