@@ -51,8 +51,10 @@ def create_app() -> FastAPI:
         app.include_router(router)
     # added innermost first: CatchAll sees every exception, SecurityHeaders every response
     app.add_middleware(CatchAll)
+    # uploads get 1 MB of slack over the file limit: multipart framing and form fields,
+    # and room for /api/fit to answer a file just over the limit with its own message
     app.add_middleware(BodySizeLimit, json_limit=settings.max_json_bytes,
-                       upload_limit=settings.max_upload_bytes)
+                       upload_limit=settings.max_upload_bytes + 1024 * 1024)
     app.add_middleware(SecurityHeaders)
     if settings.frontend_dir.is_dir():
         app.mount("/", StaticFiles(directory=settings.frontend_dir, html=True), name="frontend")

@@ -58,10 +58,6 @@ class SecurityHeaders:
         await self.app(scope, receive, send_with_headers)
 
 
-class _BodyTooLarge(Exception):
-    pass
-
-
 class BodySizeLimit:
     """413 for a request body over the cap: ``json_limit`` for JSON and other bodies,
     ``upload_limit`` for multipart uploads. Checks Content-Length and counts the bytes
@@ -89,28 +85,33 @@ class BodySizeLimit:
                 await _too_large(send, limit)
                 return
         received = 0
+        rejected = False
         started = False
 
         async def counting_receive() -> Message:
-            nonlocal received
+            # over the cap mid-stream: answer 413 now and tell the app the client left
+            nonlocal received, rejected
+            if rejected:
+                return {"type": "http.disconnect"}
             message = await receive()
             if message["type"] == "http.request":
                 received += len(message.get("body", b""))
                 if received > limit:
-                    raise _BodyTooLarge()
+                    rejected = True
+                    if not started:
+                        await _too_large(send, limit)
+                    return {"type": "http.disconnect"}
             return message
 
-        async def tracking_send(message: Message) -> None:
+        async def guarded_send(message: Message) -> None:
             nonlocal started
+            if rejected:  # after a 413 the app's own answer is dropped
+                return
             if message["type"] == "http.response.start":
                 started = True
             await send(message)
 
-        try:
-            await self.app(scope, counting_receive, tracking_send)
-        except _BodyTooLarge:
-            if not started:
-                await _too_large(send, limit)
+        await self.app(scope, counting_receive, guarded_send)
 
 
 async def _too_large(send: Send, limit: int) -> None:

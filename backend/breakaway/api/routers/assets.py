@@ -11,7 +11,7 @@ from pathlib import Path
 
 import plotly
 from fastapi import APIRouter
-from fastapi.responses import FileResponse, HTMLResponse, Response
+from fastapi.responses import FileResponse, HTMLResponse, RedirectResponse, Response
 
 router = APIRouter(include_in_schema=False)
 
@@ -58,3 +58,8 @@ def docs() -> HTMLResponse:
 @router.get("/docs/init.js")
 def docs_init() -> Response:
     return Response(_DOCS_INIT, media_type="text/javascript")
+
+
+@router.get("/favicon.ico")
+def favicon() -> RedirectResponse:
+    return RedirectResponse("/favicon.svg", status_code=301)
