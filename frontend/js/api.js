@@ -1,0 +1,48 @@
+// Requests to the explorer API. Errors carry the server's 422 detail so the page can
+// show them at the field they name.
+
+export class ApiError extends Error {
+  constructor(status, detail) {
+    const first = Array.isArray(detail) && detail.length ? detail[0] : null;
+    super(first ? first.msg : `HTTP ${status}`);
+    this.status = status;
+    this.detail = Array.isArray(detail) ? detail : [];
+  }
+
+  /** {field: message} of the errors that name a body field. */
+  fieldErrors() {
+    const errors = {};
+    for (const item of this.detail) {
+      const loc = item.loc ?? [];
+      if (loc[0] === "body" && typeof loc[1] === "string") errors[loc[1]] = item.msg;
+    }
+    return errors;
+  }
+}
+
+async function request(url, options) {
+  const response = await fetch(url, options);
+  if (!response.ok) {
+    let detail = [];
+    try {
+      detail = (await response.json()).detail;
+    } catch {
+      // not JSON: keep the status only
+    }
+    throw new ApiError(response.status, detail);
+  }
+  return response.json();
+}
+
+export function postJSON(url, body, signal) {
+  return request(url, {
+    method: "POST",
+    headers: { "Content-Type": "application/json" },
+    body: JSON.stringify(body),
+    signal,
+  });
+}
+
+export function getJSON(url, signal) {
+  return request(url, { signal });
+}

@@ -1,0 +1,378 @@
+// The explorer page. One render path:
+//   state → validate (MODEL.md §1) → one POST /api/explore (the previous one aborted)
+//         → pure figure builders (plots.js) → Plotly.react on the four plots.
+// The ramp simulation runs beside it, debounced and abortable, and only ever redraws the
+// break-away plot, so it never holds up a slider.
+//
+// For tests and scripts: #plots carries data-ready="true|false" and data-frame=<count>;
+// window.breakaway.ready() resolves once the plots show the current state (or its
+// inline errors), window.breakaway.simReady() once the simulation points are settled.
+
+import { ApiError, getJSON, postJSON } from "./api.js";
+import {
+  PARAMS, buildControls, parseNumber, showErrors, sliderToValue, validate, writeControls,
+} from "./controls.js";
+import { exportCsv, exportPng } from "./export.js";
+import { PLOT_IDS, breakawayFigure, figures } from "./plots.js";
+import {
+  defaultState, exploreBody, fromQuery, matchingPreset, presetState, simulateBody, toQuery,
+} from "./state.js";
+
+const SIM_DEBOUNCE_MS = 350;
+const PLOT_CONFIG = {
+  responsive: true,
+  displaylogo: false,
+  modeBarButtonsToRemove: ["select2d", "lasso2d", "toImage"],
+};
+
+const app = {
+  defaults: null,
+  presets: [],
+  state: null,
+  frame: null,
+  frames: 0,
+  version: 0,
+  exploreController: null,
+  busy: true,
+  lastRedrawMs: null,
+  sim: null, // {key, k, u_ba, F_ba, t_ba, stale}
+  lugre: null, // {k, u_ba, F_ba}
+  simController: null,
+  simTimer: null,
+  simBusy: true, // until the first frame decides
+  lugreController: null,
+};
+
+const waiting = { ready: [], sim: [] };
+const $ = (id) => document.getElementById(id);
+
+// ---------------------------------------------------------------------------------
+// status signals
+// ---------------------------------------------------------------------------------
+
+function setBusy(busy) {
+  app.busy = busy;
+  const plots = $("plots");
+  plots.dataset.ready = busy ? "false" : "true";
+  plots.dataset.frame = String(app.frames);
+  plots.setAttribute("aria-busy", busy ? "true" : "false");
+  if (!busy) flush("ready");
+}
+
+function updateSimBusy() {
+  app.simBusy = Boolean(app.simTimer || app.simController || app.lugreController);
+  $("plots").dataset.simReady = app.simBusy ? "false" : "true";
+  if (!app.simBusy) flush("sim");
+}
+
+function flush(kind) {
+  const resolve = waiting[kind];
+  waiting[kind] = [];
+  for (const done of resolve) done();
+}
+
+function whenIdle(kind, isBusy) {
+  return new Promise((resolve) => {
+    if (isBusy()) waiting[kind].push(resolve); else resolve();
+  });
+}
+
+// ---------------------------------------------------------------------------------
+// the render path
+// ---------------------------------------------------------------------------------
+
+function refresh() {
+  const errors = validate(app.state);
+  showErrors(errors);
+  hideServerError();
+  updatePresetSelect();
+  app.version += 1;
+  const version = app.version;
+  if (app.exploreController) app.exploreController.abort();
+  app.exploreController = null;
+  if (Object.keys(errors).length) {
+    cancelSim();
+    $("plots").dataset.valid = "false";
+    setBusy(false);
+    return;
+  }
+  $("plots").dataset.valid = "true";
+  const controller = new AbortController();
+  app.exploreController = controller;
+  setBusy(true);
+  const started = performance.now();
+  postJSON("/api/explore", exploreBody(app.state), controller.signal)
+    .then(async (frame) => {
+      if (version !== app.version) return;
+      app.frame = frame;
+      markSimStale();
+      await draw();
+      if (version !== app.version) return;
+      app.frames += 1;
+      app.lastRedrawMs = performance.now() - started;
+      app.exploreController = null;
+      setBusy(false);
+      scheduleSim();
+      ensureLugre();
+    })
+    .catch((error) => {
+      if (error.name === "AbortError" || version !== app.version) return;
+      app.exploreController = null;
+      showServerError(error);
+      setBusy(false);
+      updateSimBusy();
+    });
+}
+
+function draw() {
+  const figs = figures(app.frame, app.state, app.sim, app.state.lugre ? app.lugre : null);
+  return Promise.all(PLOT_IDS.map((id) => {
+    const { data, layout } = figs[id];
+    return window.Plotly.react($(`plot-${id}`), data, layout, PLOT_CONFIG);
+  }));
+}
+
+function drawBreakaway() {
+  if (!app.frame) return Promise.resolve();
+  const { data, layout } = breakawayFigure(app.frame, app.state, app.sim,
+    app.state.lugre ? app.lugre : null);
+  return window.Plotly.react($("plot-breakaway"), data, layout, PLOT_CONFIG);
+}
+
+function showServerError(error) {
+  const fields = error instanceof ApiError ? error.fieldErrors() : {};
+  if (Object.keys(fields).length) {
+    showErrors(fields);
+    return;
+  }
+  const box = $("server-error");
+  box.textContent = `The server could not compute this view: ${error.message}`;
+  box.hidden = false;
+}
+
+function hideServerError() {
+  $("server-error").hidden = true;
+}
+
+// ---------------------------------------------------------------------------------
+// simulation (debounced, abortable, redraws the break-away plot only)
+// ---------------------------------------------------------------------------------
+
+function simRates() {
+  return app.frame ? app.frame.phase.curves.slice(0, -1).map((curve) => curve.k) : [];
+}
+
+function simKey() {
+  return JSON.stringify(simulateBody(app.state, simRates()));
+}
+
+function markSimStale() {
+  if (app.sim) app.sim.stale = app.sim.key !== simKey();
+}
+
+function cancelSim() {
+  clearTimeout(app.simTimer);
+  app.simTimer = null;
+  if (app.simController) app.simController.abort();
+  app.simController = null;
+  updateSimBusy();
+}
+
+function scheduleSim(now = false) {
+  if (!app.frame || (!app.state.sim && !now) || (!now && app.sim && !app.sim.stale)) {
+    updateSimBusy();
+    return;
+  }
+  clearTimeout(app.simTimer);
+  app.simTimer = setTimeout(runSim, now ? 0 : SIM_DEBOUNCE_MS);
+  updateSimBusy();
+}
+
+async function runSim() {
+  app.simTimer = null;
+  if (app.simController) app.simController.abort();
+  const controller = new AbortController();
+  app.simController = controller;
+  const key = simKey();
+  const rates = simRates();
+  const status = $("sim-status");
+  status.textContent = `Simulating ${rates.length} ramps…`;
+  const started = performance.now();
+  try {
+    const result = await postJSON("/api/simulate", simulateBody(app.state, rates), controller.signal);
+    if (controller !== app.simController) return;
+    app.sim = { ...result, key, stale: key !== simKey() };
+    const missing = result.u_ba.filter((value) => value === null).length;
+    const seconds = ((performance.now() - started) / 1000).toFixed(2);
+    status.textContent = `Simulated ${rates.length} ramps in ${seconds} s`
+      + (missing ? `; ${missing} did not break away within the step budget` : "");
+    await drawBreakaway();
+  } catch (error) {
+    if (error.name === "AbortError" || controller !== app.simController) return;
+    status.textContent = `Simulation failed: ${error.message}`;
+  }
+  if (controller === app.simController) {
+    app.simController = null;
+    updateSimBusy();
+  }
+}
+
+async function ensureLugre() {
+  if (!app.state.lugre || app.lugre || app.lugreController || !app.frame) return;
+  const controller = new AbortController();
+  app.lugreController = controller;
+  updateSimBusy();
+  try {
+    app.lugre = await postJSON("/api/simulate", { model: "lugre", k: simRates() }, controller.signal);
+    await drawBreakaway();
+  } catch (error) {
+    if (error.name !== "AbortError") $("sim-status").textContent = `LuGre failed: ${error.message}`;
+  } finally {
+    app.lugreController = null;
+    updateSimBusy();
+  }
+}
+
+// ---------------------------------------------------------------------------------
+// state changes from the controls, presets, reset and history
+// ---------------------------------------------------------------------------------
+
+function commit() {
+  const query = toQuery(app.state);
+  if (query !== window.location.search) window.history.pushState(null, "", query);
+}
+
+function setState(state, { push = true } = {}) {
+  app.state = state;
+  writeControls(state);
+  if (push) commit();
+  refresh();
+}
+
+function updatePresetSelect() {
+  const name = matchingPreset(app.state, app.presets);
+  $("preset").value = name;
+  const preset = app.presets.find((p) => p.name === name);
+  $("preset-description").textContent = preset ? preset.description : "";
+}
+
+function wireControls() {
+  for (const spec of PARAMS) {
+    const box = $(spec.name);
+    const range = $(`${spec.name}-range`);
+    range.addEventListener("input", () => {
+      const value = sliderToValue(spec, range.value);
+      app.state[spec.name] = value;
+      box.value = String(value);
+      refresh();
+    });
+    box.addEventListener("input", () => {
+      const value = parseNumber(box.value);
+      app.state[spec.name] = Number.isNaN(value) ? box.value : value;
+      writeControls(app.state, { except: box });
+      refresh();
+    });
+    range.addEventListener("change", commit);
+    box.addEventListener("change", commit);
+  }
+  $("F_hat").addEventListener("change", () => {
+    app.state.F_hat = $("F_hat").value;
+    commit();
+    refresh();
+  });
+  $("sim").addEventListener("change", () => {
+    app.state.sim = $("sim").checked;
+    commit();
+    scheduleSim();
+  });
+  $("lugre").addEventListener("change", () => {
+    app.state.lugre = $("lugre").checked;
+    commit();
+    drawBreakaway();
+    ensureLugre();
+  });
+  $("simulate").addEventListener("click", () => scheduleSim(true));
+  $("preset").addEventListener("change", () => {
+    const preset = app.presets.find((p) => p.name === $("preset").value);
+    if (preset) setState(presetState(preset, app.defaults, app.state));
+  });
+  $("reset").addEventListener("click", () => setState(defaultState(app.defaults)));
+  $("copy-link").addEventListener("click", async () => {
+    try {
+      await navigator.clipboard.writeText(window.location.href);
+      $("sim-status").textContent = "Link copied.";
+    } catch {
+      $("sim-status").textContent = `Link: ${window.location.href}`;
+    }
+  });
+  for (const button of document.querySelectorAll("[data-export]")) {
+    button.addEventListener("click", () => {
+      if (button.dataset.export === "csv") exportCsv(button.dataset.plot);
+      else exportPng(button.dataset.plot);
+    });
+  }
+  window.addEventListener("popstate", () => {
+    setState(fromQuery(window.location.search, app.defaults), { push: false });
+  });
+}
+
+function wireTabs() {
+  const tabs = [...document.querySelectorAll('[role="tab"]')];
+  const select = (tab) => {
+    for (const other of tabs) {
+      const selected = other === tab;
+      other.setAttribute("aria-selected", String(selected));
+      other.tabIndex = selected ? 0 : -1;
+      $(other.getAttribute("aria-controls")).hidden = !selected;
+    }
+  };
+  for (const [i, tab] of tabs.entries()) {
+    tab.addEventListener("click", () => select(tab));
+    tab.addEventListener("keydown", (event) => {
+      const step = { ArrowRight: 1, ArrowLeft: -1 }[event.key];
+      if (!step) return;
+      const next = tabs[(i + step + tabs.length) % tabs.length];
+      next.focus();
+      select(next);
+    });
+  }
+}
+
+async function init() {
+  buildControls(document);
+  wireTabs();
+  const response = await getJSON("/api/presets");
+  app.defaults = response.defaults;
+  app.presets = response.presets;
+  const select = $("preset");
+  for (const preset of app.presets) {
+    const option = document.createElement("option");
+    option.value = preset.name;
+    option.textContent = preset.name;
+    option.title = preset.description;
+    select.append(option);
+  }
+  app.state = fromQuery(window.location.search, app.defaults);
+  window.history.replaceState(null, "", toQuery(app.state));
+  writeControls(app.state);
+  wireControls();
+  refresh();
+}
+
+window.breakaway = {
+  /** Resolves once the four plots show the current state (or its inline errors). */
+  ready: () => whenIdle("ready", () => app.busy),
+  /** Resolves once no simulation is pending or running. */
+  simReady: () => whenIdle("sim", () => app.simBusy),
+  /** A copy of the current state. */
+  state: () => JSON.parse(JSON.stringify(app.state)),
+  /** Completed redraws, and the last one's duration (input to plots drawn) [ms]. */
+  frames: () => app.frames,
+  lastRedrawMs: () => app.lastRedrawMs,
+};
+
+init().catch((error) => {
+  showServerError(error);
+  setBusy(false);
+  updateSimBusy();
+});

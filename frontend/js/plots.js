@@ -1,0 +1,208 @@
+// Pure functions from one /api/explore frame (and the simulation results) to fresh
+// Plotly figures {data, layout}. Nothing here touches the DOM; main.js hands the
+// figures to Plotly.react.
+
+export const PLOT_IDS = ["stribeck", "hysteresis", "phase", "breakaway"];
+
+const COLORS = {
+  Fc: "#1f77b4",
+  Fs: "#d62728",
+  avg: "#2ca02c",
+  self: "#9467bd",
+  family: "#b8bcc4",
+  current: "#e6550d",
+  curve: "#1f4e99",
+  sim: "#111111",
+  lugre: "#8c564b",
+};
+
+const F_HAT_LABEL = { Fc: "F̂ = Fc", Fs: "F̂ = Fs", avg: "F̂ = avg", self: "F̂ = self" };
+
+/** Axis titles per plot, also the CSV column names of each plot's export. */
+export const AXES = {
+  stribeck: { x: "v [m/s]", y: "Fss [N]" },
+  hysteresis: { x: "x [m]", y: "F [N]" },
+  phase: { x: "z [-]", y: "ẋ [m/s]" },
+  breakaway: { x: "k [N/s]", y: "F_ba [N]" },
+};
+
+function baseLayout(plot, extra = {}) {
+  return {
+    uirevision: plot, // keeps a person's zoom across redraws
+    margin: { l: 58, r: 12, t: 8, b: 42 },
+    font: { size: 11 },
+    hovermode: "closest",
+    showlegend: true,
+    legend: { x: 1, xanchor: "right", y: 1, bgcolor: "rgba(255,255,255,0.75)" },
+    // fixed margins: automargin would cost a second layout pass on every redraw
+    xaxis: { title: { text: AXES[plot].x, standoff: 4 }, zeroline: true },
+    yaxis: { title: { text: AXES[plot].y, standoff: 4 }, zeroline: true, exponentformat: "power" },
+    ...extra,
+  };
+}
+
+export function stribeckFigure(frame) {
+  const data = [{
+    type: "scatter", mode: "lines", name: "Fss(v)",
+    x: frame.stribeck.v, y: frame.stribeck.F,
+    line: { color: COLORS.curve, width: 2 },
+  }];
+  return { data, layout: baseLayout("stribeck", { showlegend: false }) };
+}
+
+export function hysteresisFigure(frame) {
+  const data = [{
+    type: "scatter", mode: "lines", name: "F(x)",
+    x: frame.hysteresis.x, y: frame.hysteresis.F,
+    line: { color: COLORS.curve, width: 1.8 },
+  }];
+  return { data, layout: baseLayout("hysteresis", { showlegend: false }) };
+}
+
+/**
+ * Fig. 3: the family in grey (one trace, curves separated by gaps: one trace draws
+ * faster than fifteen), the current k (the frame's last curve) highlighted.
+ */
+export function phaseFigure(frame, state) {
+  const curves = frame.phase.curves;
+  const z = frame.phase.z;
+  const family = curves.slice(0, -1);
+  const xs = [];
+  const ys = [];
+  const ks = [];
+  for (const curve of family) {
+    for (let i = 0; i < z.length; i += 1) {
+      xs.push(z[i]);
+      ys.push(curve.v[i]);
+      ks.push(curve.k);
+    }
+    xs.push(null);
+    ys.push(null);
+    ks.push(null);
+  }
+  const current = curves[curves.length - 1];
+  const label = family.length
+    ? `k = ${fmt(family[0].k)}, ${fmt(family[1]?.k)}, …, ${fmt(family[family.length - 1].k)}`
+    : "family";
+  const data = [
+    {
+      type: "scatter", mode: "lines", name: label,
+      x: xs, y: ys, customdata: ks, connectgaps: false,
+      line: { color: COLORS.family, width: 1 },
+      hovertemplate: "k = %{customdata} N/s<br>z = %{x:.3f}<br>ẋ = %{y:.4g} m/s<extra></extra>",
+    },
+    {
+      type: "scatter", mode: "lines", name: `current k = ${fmt(current.k)}`,
+      x: z, y: current.v,
+      line: { color: COLORS.current, width: 3 },
+      hovertemplate: `k = ${fmt(current.k)} N/s<br>z = %{x:.3f}<br>ẋ = %{y:.4g} m/s<extra></extra>`,
+    },
+  ];
+  const zStar = Number(state.z_ba);
+  const [lo, hi] = extent(ys.concat(current.v), true);
+  // marker lines are traces, not layout shapes: a shape costs a separate drawing pass
+  data.push({
+    type: "scatter", mode: "lines", name: `z* = ${fmt(zStar)}`,
+    x: [zStar, zStar], y: [lo, hi], hoverinfo: "skip",
+    line: { color: "#555", width: 1, dash: "dot" },
+  });
+  const layout = baseLayout("phase", {
+    yaxis: { title: { text: `${AXES.phase.y} (log)`, standoff: 4 }, type: "log",
+      exponentformat: "power" },
+    legend: { x: 0, xanchor: "left", y: 1, bgcolor: "rgba(255,255,255,0.75)" },
+  });
+  return { data, layout };
+}
+
+/** [min, max] of the finite values (positive ones only when `positive`). */
+export function extent(values, positive = false) {
+  let lo = Infinity;
+  let hi = -Infinity;
+  for (const value of values) {
+    if (value == null || !Number.isFinite(value) || (positive && value <= 0)) continue;
+    if (value < lo) lo = value;
+    if (value > hi) hi = value;
+  }
+  return lo <= hi ? [lo, hi] : [null, null];
+}
+
+/** Linear interpolation of (xs, ys) at x; null outside the grid. */
+export function interpolate(xs, ys, x) {
+  const n = xs.length;
+  if (!n || x < xs[0] || x > xs[n - 1]) return null;
+  let lo = 0;
+  let hi = n - 1;
+  while (hi - lo > 1) {
+    const mid = (lo + hi) >> 1;
+    if (xs[mid] <= x) lo = mid; else hi = mid;
+  }
+  if (xs[hi] === xs[lo]) return ys[lo];
+  const t = (x - xs[lo]) / (xs[hi] - xs[lo]);
+  return ys[lo] + t * (ys[hi] - ys[lo]);
+}
+
+/**
+ * Fig. 5: F_ba(k) for the four F̂ (the chosen one drawn heavier), the current k, and
+ * the simulated break-away points of the ramp (E7) and of LuGre when present.
+ * `sim` / `lugre`: {k, u_ba, F_ba, stale} or null.
+ */
+export function breakawayFigure(frame, state, sim = null, lugre = null) {
+  const ba = frame.breakaway;
+  const data = ["Fc", "Fs", "avg", "self"].map((name) => ({
+    type: "scatter", mode: "lines", name: F_HAT_LABEL[name],
+    x: ba.k, y: ba[name],
+    line: { color: COLORS[name], width: name === state.F_hat ? 3 : 1.3 },
+  }));
+  const k = Number(state.k);
+  const yCurrent = interpolate(ba.k, ba[state.F_hat], k);
+  data.push({
+    type: "scatter", mode: "markers", name: `current k = ${fmt(k)}`,
+    x: [k], y: [yCurrent],
+    marker: { color: COLORS.current, size: 11, symbol: "circle", line: { color: "#fff", width: 1 } },
+  });
+  if (sim) {
+    const opacity = sim.stale ? 0.35 : 1;
+    data.push({
+      type: "scatter", mode: "markers", name: "ramp sim.: u(t_ba)",
+      x: sim.k, y: sim.u_ba, opacity,
+      marker: { color: COLORS.sim, size: 7, symbol: "circle" },
+    });
+    data.push({
+      type: "scatter", mode: "markers", name: "ramp sim.: F(t_ba)",
+      x: sim.k, y: sim.F_ba, opacity,
+      marker: { color: COLORS.sim, size: 7, symbol: "circle-open" },
+    });
+  }
+  if (lugre) {
+    data.push({
+      type: "scatter", mode: "markers", name: "LuGre 1995: max F",
+      x: lugre.k, y: lugre.F_ba, opacity: lugre.stale ? 0.35 : 1,
+      marker: { color: COLORS.lugre, size: 8, symbol: "diamond" },
+    });
+  }
+  const [lo, hi] = extent(data.flatMap((trace) => trace.y));
+  data.splice(4, 0, {
+    type: "scatter", mode: "lines", name: "current k line", showlegend: false,
+    x: [k, k], y: [lo, hi], hoverinfo: "skip",
+    line: { color: COLORS.current, width: 1, dash: "dash" },
+  });
+  const layout = baseLayout("breakaway", {
+    legend: { orientation: "h", x: 0, y: -0.2, yanchor: "top", font: { size: 10 } },
+    margin: { l: 58, r: 12, t: 8, b: 80 },
+  });
+  return { data, layout };
+}
+
+/** All four figures of one redraw, keyed by plot id. */
+export function figures(frame, state, sim, lugre) {
+  return {
+    stribeck: stribeckFigure(frame),
+    hysteresis: hysteresisFigure(frame),
+    phase: phaseFigure(frame, state),
+    breakaway: breakawayFigure(frame, state, sim, lugre),
+  };
+}
+
+function fmt(value) {
+  return Number.isFinite(value) ? String(Number(value.toPrecision(4))) : String(value);
+}

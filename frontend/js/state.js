@@ -1,0 +1,77 @@
+// The explorer's whole state, and its round trip through the URL's query string.
+// A state is a plain object: the model parameters (numbers, or the text a person typed
+// when it is not a number yet), F_hat, and the two toggles `sim` and `lugre`.
+
+import { PARAMS, parseNumber } from "./controls.js";
+
+export const PARAM_NAMES = PARAMS.map((spec) => spec.name);
+export const TOGGLES = { sim: true, lugre: false };
+
+/** A full state from the server's defaults (GET /api/presets → defaults). */
+export function defaultState(defaults) {
+  const state = { ...TOGGLES };
+  for (const name of PARAM_NAMES) state[name] = defaults[name];
+  state.F_hat = defaults.F_hat;
+  return state;
+}
+
+/** The state a preset gives, keeping the toggles of `current`. */
+export function presetState(preset, defaults, current) {
+  const state = defaultState({ ...defaults, ...preset.params });
+  state.sim = current.sim;
+  state.lugre = current.lugre;
+  return state;
+}
+
+/** Query string of a state (numbers as typed, so a link reproduces the view exactly). */
+export function toQuery(state) {
+  const query = new URLSearchParams();
+  for (const name of PARAM_NAMES) query.set(name, String(state[name]));
+  query.set("F_hat", state.F_hat);
+  query.set("sim", state.sim ? "1" : "0");
+  query.set("lugre", state.lugre ? "1" : "0");
+  return `?${query.toString()}`;
+}
+
+/** State from a query string; missing keys take the defaults, bad numbers stay as text. */
+export function fromQuery(search, defaults) {
+  const query = new URLSearchParams(search);
+  const state = defaultState(defaults);
+  for (const name of PARAM_NAMES) {
+    if (!query.has(name)) continue;
+    const text = query.get(name);
+    const value = parseNumber(text);
+    state[name] = Number.isNaN(value) ? text : value;
+  }
+  if (query.has("F_hat")) state.F_hat = query.get("F_hat");
+  for (const name of Object.keys(TOGGLES)) {
+    if (query.has(name)) state[name] = query.get(name) === "1";
+  }
+  return state;
+}
+
+/** Name of the preset whose parameters equal the state's, or "". */
+export function matchingPreset(state, presets) {
+  for (const preset of presets) {
+    const same = PARAM_NAMES.every((name) => parseNumber(state[name]) === preset.params[name])
+      && state.F_hat === preset.params.F_hat;
+    if (same) return preset.name;
+  }
+  return "";
+}
+
+/** The body of POST /api/explore for a valid state. */
+export function exploreBody(state) {
+  const body = { F_hat: state.F_hat };
+  for (const name of PARAM_NAMES) body[name] = parseNumber(state[name]);
+  return body;
+}
+
+/** The body of POST /api/simulate (presliding model) for a valid state and rates. */
+export function simulateBody(state, rates) {
+  const body = { model: "presliding", k: rates };
+  for (const name of ["Fc", "Fs", "V", "delta", "sigma", "s", "z_ba", "m"]) {
+    body[name] = parseNumber(state[name]);
+  }
+  return body;
+}
