@@ -1,0 +1,55 @@
+"""The command line: ``breakaway fit`` (human and JSON) and its errors."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+
+import pytest
+
+from breakaway.cli import main
+from breakaway.identify.synthetic import make_dataset, to_csv
+
+
+@pytest.fixture
+def steady_file(tmp_path):
+    data, _ = make_dataset("steady", ("viscous",), seed=3)
+    path = tmp_path / "steady.csv"
+    path.write_text(to_csv(data))
+    return path
+
+
+def test_fit_prints_a_readable_report(steady_file, capsys):
+    assert main(["fit", str(steady_file)]) == 0
+    out = capsys.readouterr().out
+    assert "effects found: viscous" in out
+    assert "held-out" in out and "noise floor" in out
+    assert "sigma" in out
+
+
+def test_fit_json_is_the_report(steady_file, capsys):
+    assert main(["fit", str(steady_file), "--json"]) == 0
+    report = json.loads(capsys.readouterr().out)
+    assert report["effects"] == ["viscous"]
+    assert report["error_after"] < report["error_before"]
+
+
+def test_bad_file_exits_2_with_a_message_and_no_traceback(tmp_path):
+    bad = tmp_path / "bad.csv"
+    bad.write_text("t,x,F\n" + "".join(f"{i},0,{'x' if i == 5 else 1}\n" for i in range(12)))
+    run = subprocess.run([sys.executable, "-m", "breakaway", "fit", str(bad)],
+                         capture_output=True, text=True)
+    assert run.returncode == 2
+    assert "line 7, column 'F': 'x' is not a number" in run.stderr
+    assert "Traceback" not in run.stderr
+
+
+def test_missing_file(tmp_path, capsys):
+    assert main(["fit", str(tmp_path / "none.csv")]) == 2
+    assert "cannot read" in capsys.readouterr().err
+
+
+def test_kind_option(steady_file, capsys):
+    assert main(["fit", str(steady_file), "--kind", "breakaway"]) == 2
+    assert "missing column" in capsys.readouterr().err
