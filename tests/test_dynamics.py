@@ -414,8 +414,12 @@ def test_lugre_unknown_parameter():
         simulate_lugre_breakaway([1.0], params={"sigma_0": 1e5})
 
 
-def test_rtol_limits_are_documented():
-    assert dynamics.MIN_RTOL == 1e-12 and dynamics.DEFAULT_RTOL == 1e-6
-    simulate_breakaway(10.0, **DEFAULT, rtol=1e-12)  # the tightest accepted
+def test_rtol_limits():
+    assert dynamics.MIN_RTOL <= 1e-12 <= 1e-3
+    assert dynamics.MIN_RTOL <= dynamics.DEFAULT_RTOL <= 1e-3
+    r = simulate_breakaway(10.0, **DEFAULT, rtol=dynamics.MIN_RTOL)  # the tightest accepted
+    assert math.isfinite(r.u_ba[0])
+    with pytest.raises(ValueError, match="^rtol must"):
+        simulate_breakaway(10.0, **DEFAULT, rtol=dynamics.MIN_RTOL / 2)
     with pytest.raises(ValueError, match="^rtol must"):
         simulate_breakaway(10.0, **DEFAULT, rtol=1e-2)
