@@ -20,10 +20,11 @@ import time
 from dataclasses import dataclass, field
 
 import numpy as np
+from threadpoolctl import threadpool_limits
 
 from .csvdata import Dataset
 from .effects import candidates
-from .fitting import FitResult, fit_model, fit_with_effect, refit
+from .fitting import FitResult, best_base_starts, fit_model, fit_with_effect, refit
 from .residuals import is_white, noise_floor, signature, smoothness_statistic
 
 #: A BIC drop of 10 is "very strong" evidence (Kass & Raftery 1995).
@@ -102,8 +103,15 @@ def diagnose(data: Dataset, progress=None) -> Diagnosis:
     ----------
     data : Dataset
     progress : callable, optional
-        Called as ``progress(fraction, message)`` as the work advances.
+        Called as ``progress(fraction, message)`` as the work advances; an exception it
+        raises ends the diagnosis (how a job is cancelled).
     """
+    # one BLAS thread: the Jacobians are tall and thin, threads only contend
+    with threadpool_limits(limits=1, user_api="blas"):
+        return _diagnose(data, progress)
+
+
+def _diagnose(data: Dataset, progress) -> Diagnosis:
     started = time.perf_counter()
     report = progress or (lambda fraction, message: None)
     report(0.0, "fitting the base model")
@@ -112,6 +120,7 @@ def diagnose(data: Dataset, progress=None) -> Diagnosis:
     train, test = heldout_rows(data)
     current, current_heldout = base, _heldout_error(data, base, train, test)
     heldout_before = current_heldout
+    restarts = best_base_starts(data)
     remaining = candidates(data.kind, data.columns)
     total = max(len(remaining), 1)
     steps: list[Step] = []
@@ -121,7 +130,7 @@ def diagnose(data: Dataset, progress=None) -> Diagnosis:
         for i, effect in enumerate(remaining):
             report(len(steps) / total + i / total**2, f"trying {effect}")
             try:
-                trials[effect] = fit_with_effect(data, current, effect)
+                trials[effect] = fit_with_effect(data, current, effect, restarts=restarts)
             except ValueError:
                 continue
         tried = {e: (f.rmse, f.bic) for e, f in trials.items()}

@@ -14,7 +14,7 @@ from scipy.optimize import least_squares
 from scipy.signal import lombscargle
 
 from .csvdata import Dataset
-from .models import Problem, lag_filter
+from .models import Problem
 
 
 class FitError(ValueError):
@@ -286,12 +286,20 @@ def fit_model(data: Dataset, effects=(), starts=None, rows=None, max_nfev=None,
     order = np.argsort(costs)[:screen]
     if not math.isfinite(costs[order[0]]):
         raise FitError("no starting point gives a finite prediction")
-    budget = max_nfev or 60 * (len(problem.names) + 1)
+    # a short polish of each screened start, then a full one of the best
+    n_params = len(problem.names)
+    budget = max_nfev or 60 * (n_params + 1)
     best = None
-    for i in order:
-        result = _solve(problem, problem.to_theta(starts[i]), rows, budget)
-        if best is None or result.cost < best.cost:
-            best = result
+    if len(order) > 1:
+        for i in order:
+            result = _solve(problem, problem.to_theta(starts[i]), rows, 8 * (n_params + 1))
+            if best is None or result.cost < best.cost:
+                best = result
+        theta = best.x
+    else:
+        theta = problem.to_theta(starts[order[0]])
+    final = _solve(problem, theta, rows, budget)
+    best = final if best is None or final.cost <= best.cost else best
     params = problem.to_params(best.x)
     prediction = problem.predict(params)
     r = problem.measured[rows] - prediction[rows]
@@ -307,14 +315,30 @@ def refit(data: Dataset, fit: FitResult, rows=None, max_nfev=None) -> FitResult:
                      screen=1)
 
 
+def best_base_starts(data: Dataset, count: int = 4) -> list[dict]:
+    """The ``count`` base starting points of :func:`base_starts` with the lowest cost."""
+    problem = Problem(data)
+    starts = base_starts(problem)
+    rows = np.arange(data.n)
+    costs = [_cost(problem, s, rows) for s in starts]
+    return [starts[i] for i in np.argsort(costs)[:count]]
+
+
 def fit_with_effect(data: Dataset, current: FitResult, effect: str, rows=None,
-                    screen=2) -> FitResult:
-    """Add ``effect`` to ``current``'s model and fit everything again."""
+                    screen=2, restarts=()) -> FitResult:
+    """Add ``effect`` to ``current``'s model and fit everything again.
+
+    Starts: ``current``'s parameters with the effect's values read off the residual,
+    and the same effect values on each of ``restarts`` (base parameter sets, e.g.
+    :func:`best_base_starts`), so a fit is not trapped in the current model's basin.
+    """
     problem = Problem(data, current.effects + (effect,))
-    starts = [{**current.params, **extra}
-              for extra in effect_starts(problem, effect, current.params, current.residual())]
+    extras = effect_starts(problem, effect, current.params, current.residual())
+    starts = []
+    for origin in (current.params, *restarts):
+        starts.extend({**current.params, **origin, **extra} for extra in extras)
     return fit_model(data, problem.effects, starts=starts, rows=rows, screen=screen)
 
 
-__all__ = ["FitError", "FitResult", "bic", "fit_model", "fit_with_effect", "refit",
-           "base_starts", "effect_starts", "lag_filter"]
+__all__ = ["FitError", "FitResult", "base_starts", "best_base_starts", "bic", "effect_starts",
+           "fit_model", "fit_with_effect", "refit"]

@@ -225,7 +225,9 @@ class Problem:
         table = {
             "Fc": (1e-9 * F, 20 * F),
             "Fs": (0.0, 20 * F),
-            "V": (math.log(1e-6 * v), math.log(1e4 * v)),
+            # a Stribeck velocity far below every measured speed is not identifiable and
+            # is a degenerate basin (g = Fc at any speed but exactly 0)
+            "V": (math.log(1e-3 * v), math.log(1e4 * v)),
             "delta": DELTA_BOUNDS,
             "s": (math.log(1e-2 / sc.travel), math.log(max(1e3 / sc.step, 1e2 / sc.travel))),
             "sigma": (0.0, 100 * F / v),
