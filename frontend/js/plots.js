@@ -182,7 +182,7 @@ export function breakawayFigure(frame, state, sim = null, lugre = null) {
   }
   const [lo, hi] = extent(data.flatMap((trace) => trace.y));
   data.splice(4, 0, {
-    type: "scatter", mode: "lines", name: "current k line", showlegend: false,
+    type: "scatter", mode: "lines", name: "line at the current k", showlegend: false,
     x: [k, k], y: [lo, hi], hoverinfo: "skip",
     line: { color: COLORS.current, width: 1, dash: "dash" },
   });

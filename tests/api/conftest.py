@@ -12,7 +12,7 @@ from breakaway.settings import get_settings
 
 
 @contextlib.contextmanager
-def app_client(monkeypatch: pytest.MonkeyPatch | None = None, **settings):
+def app_client(**settings):
     """A TestClient on a fresh app, with ``BREAKAWAY_<NAME>`` settings overridden."""
     with pytest.MonkeyPatch.context() as patch:
         for name, value in settings.items():
@@ -30,3 +30,9 @@ def app_client(monkeypatch: pytest.MonkeyPatch | None = None, **settings):
 def client():
     with app_client() as client:
         yield client
+
+
+@pytest.fixture
+def make_client():
+    """``make_client(**settings)``: a context manager giving a client on a fresh app."""
+    return app_client

@@ -10,8 +10,6 @@ import pytest
 from breakaway.dynamics import simulate_breakaway, simulate_lugre_breakaway
 from breakaway.params import DEFAULTS, LUGRE_1995
 
-from conftest import app_client
-
 RATES = [0.5, 2.01, 10.0]
 
 
@@ -115,16 +113,16 @@ def test_nan_rate_gets_422(client):
     assert response.json()["detail"][0]["loc"] == ["body", "k", 1]
 
 
-def test_a_rate_without_break_away_in_the_step_budget_is_null():
-    with app_client(simulate_max_steps=50) as client:
+def test_a_rate_without_break_away_in_the_step_budget_is_null(make_client):
+    with make_client(simulate_max_steps=50) as client:
         result = simulate(client, {"k": [1.0]}).json()
     assert result["u_ba"] == [None] and result["F_ba"] == [None] and result["t_ba"] == [None]
 
 
-def test_over_the_time_budget_is_a_422_and_the_worker_recovers():
+def test_over_the_time_budget_is_a_422_and_the_worker_recovers(make_client):
     # chattering at small rates with a tiny mass takes ~1 s: far over a 0.05 s budget
     slow = {"k": [0.01, 0.02, 0.03], "m": 1e-6}
-    with app_client(simulate_timeout_s=0.05) as client:
+    with make_client(simulate_timeout_s=0.05) as client:
         response = simulate(client, slow)
         assert response.status_code == 422
         error = response.json()["detail"][0]

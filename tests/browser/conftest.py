@@ -1,0 +1,141 @@
+"""Browser tests: the real server (uvicorn, subprocess) and headless Chromium (Playwright).
+
+Chromium: ``BREAKAWAY_CHROMIUM`` if set and non-empty, else ``/usr/bin/chromium`` if it
+exists, else Playwright's own browser. A browser that cannot launch FAILS the tests
+(never skips them): CI must run them.
+"""
+
+from __future__ import annotations
+
+import os
+import socket
+import subprocess
+import sys
+import time
+import urllib.request
+from pathlib import Path
+
+import pytest
+
+BROWSER_ARGS = ["--no-sandbox", "--disable-gpu", "--disable-background-networking",
+                "--disable-component-update", "--disable-sync"]
+DESKTOP = {"width": 1280, "height": 800}
+
+
+def chromium_path() -> str | None:
+    chosen = os.environ.get("BREAKAWAY_CHROMIUM", "")
+    if chosen:
+        return chosen
+    if Path("/usr/bin/chromium").exists():
+        return "/usr/bin/chromium"
+    return None  # Playwright's bundled browser
+
+
+def _free_port() -> int:
+    with socket.socket() as sock:
+        sock.bind(("127.0.0.1", 0))
+        return sock.getsockname()[1]
+
+
+@pytest.fixture(scope="session")
+def server_url():
+    port = _free_port()
+    log = open(Path(os.environ.get("TMPDIR", "/tmp")) / f"breakaway-browser-{port}.log", "w")
+    process = subprocess.Popen([sys.executable, "-m", "breakaway", "serve", "--host",
+                                "127.0.0.1", "--port", str(port)], stdout=log,
+                               stderr=subprocess.STDOUT)
+    url = f"http://127.0.0.1:{port}"
+    try:
+        deadline = time.monotonic() + 60
+        while True:
+            if process.poll() is not None:
+                pytest.fail(f"the server exited with {process.returncode}; see {log.name}")
+            try:
+                with urllib.request.urlopen(f"{url}/api/health", timeout=1) as response:
+                    if response.status == 200:
+                        break
+            except OSError:
+                pass
+            if time.monotonic() > deadline:
+                pytest.fail("the server did not answer /api/health within 60 s")
+            time.sleep(0.1)
+        yield url
+    finally:
+        process.terminate()
+        try:
+            process.wait(timeout=10)
+        except subprocess.TimeoutExpired:
+            process.kill()
+        log.close()
+
+
+@pytest.fixture(scope="session")
+def browser():
+    from playwright.sync_api import sync_playwright
+
+    with sync_playwright() as playwright:
+        try:
+            browser = playwright.chromium.launch(executable_path=chromium_path(),
+                                                 headless=True, args=BROWSER_ARGS)
+        except Exception as exc:  # noqa: BLE001 - any launch failure must fail, not skip
+            pytest.fail(f"Chromium did not launch ({chromium_path() or 'Playwright default'}): "
+                        f"{exc}", pytrace=False)
+        yield browser
+        browser.close()
+
+
+class Explorer:
+    """A page of the explorer plus helpers that read what the plots show."""
+
+    def __init__(self, page, base_url):
+        self.page = page
+        self.base_url = base_url
+        self.problems: list[str] = []
+        page.on("console", lambda message: message.type == "error"
+                and self.problems.append(f"console: {message.text}"))
+        page.on("pageerror", lambda error: self.problems.append(f"page error: {error}"))
+
+    def open(self, query: str = "") -> "Explorer":
+        self.page.goto(f"{self.base_url}/{query}")
+        self.ready()
+        return self
+
+    def ready(self) -> None:
+        self.page.evaluate("window.breakaway.ready()")
+
+    def sim_ready(self) -> None:
+        self.page.evaluate("window.breakaway.simReady()")
+
+    def traces(self, plot: str) -> dict[str, dict]:
+        """The plotted traces of ``plot`` by name: {name: {x, y, customdata}}."""
+        traces = self.page.evaluate(
+            """(id) => document.getElementById('plot-' + id).data.map(t => (
+                {name: t.name, x: Array.from(t.x), y: Array.from(t.y),
+                 customdata: t.customdata ? Array.from(t.customdata) : null}))""", plot)
+        return {trace["name"]: trace for trace in traces}
+
+    def frames(self) -> int:
+        return self.page.evaluate("window.breakaway.frames()")
+
+    def state(self) -> dict:
+        return self.page.evaluate("window.breakaway.state()")
+
+
+@pytest.fixture(scope="session")
+def context(browser):
+    """One browser context for the session: its HTTP cache keeps Plotly (4.8 MB) loaded."""
+    context = browser.new_context(viewport=DESKTOP, accept_downloads=True)
+    yield context
+    context.close()
+
+
+@pytest.fixture
+def explorer(context, server_url):
+    page = context.new_page()
+    page.set_viewport_size(DESKTOP)
+    page.set_default_timeout(20_000)
+    explorer = Explorer(page, server_url)
+    yield explorer
+    page.close()
+    # CSP violations and script errors show up here
+    assert explorer.problems == []

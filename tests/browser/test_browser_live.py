@@ -1,0 +1,162 @@
+"""Live redraw (one request in flight, stale ones aborted), the simulation points,
+keyboard use, and the layout at 1280×800 and at phone width."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from breakaway.dynamics import simulate_breakaway, simulate_lugre_breakaway
+from breakaway.params import DEFAULTS, FIG3_RATES
+
+from browser_model import assert_plots_match_model, values
+
+pytestmark = pytest.mark.browser
+
+COUNT_FETCHES = """
+(() => {
+  // an explore request is in flight from fetch() until it settles or is aborted
+  const original = window.fetch;
+  window.__explore = {inFlight: 0, maxInFlight: 0, started: 0, finished: 0, aborted: 0};
+  window.fetch = async (url, options) => {
+    if (!String(url).includes('/api/explore')) return original(url, options);
+    const stats = window.__explore;
+    let open = true;
+    const close = () => { if (open) { open = false; stats.inFlight -= 1; } };
+    stats.started += 1; stats.inFlight += 1;
+    stats.maxInFlight = Math.max(stats.maxInFlight, stats.inFlight);
+    options?.signal?.addEventListener('abort', () => { stats.aborted += 1; close(); });
+    try {
+      const response = await original(url, options);
+      stats.finished += 1;
+      return response;
+    } finally {
+      close();
+    }
+  };
+})();
+"""
+
+
+def test_one_request_in_flight_and_stale_ones_aborted(explorer):
+    explorer.page.add_init_script(COUNT_FETCHES)
+    explorer.open("?sim=0")
+    # 40 slider inputs in one task, as fast as a drag can produce them
+    explorer.page.evaluate("""() => {
+        const slider = document.getElementById('Fs-range');
+        for (let i = 0; i < 40; i++) {
+            slider.value = String(520 + i * 5);
+            slider.dispatchEvent(new Event('input', {bubbles: true}));
+        }
+    }""")
+    explorer.ready()
+    stats = explorer.page.evaluate("window.__explore")
+    assert stats["maxInFlight"] == 1
+    assert stats["started"] == 41  # the first frame and one per input
+    assert stats["aborted"] >= 39  # every input but the last one made its predecessor stale
+    state = explorer.state()
+    assert state["Fs"] == float(explorer.page.get_by_label("Fs [N]", exact=True).input_value())
+    assert_plots_match_model(explorer, state)
+
+
+def test_simulated_break_away_points_follow_the_model(explorer):
+    explorer.open("?sim=1&lugre=0")
+    explorer.sim_ready()
+    traces = explorer.traces("breakaway")
+    p = {name: DEFAULTS[name] for name in ("Fc", "Fs", "V", "delta", "sigma", "s", "m", "z_ba")}
+    expected = simulate_breakaway(FIG3_RATES, **p, max_steps=1_000_000)
+    assert traces["ramp sim.: u(t_ba)"]["x"] == list(FIG3_RATES)
+    np.testing.assert_allclose(values(traces["ramp sim.: u(t_ba)"]["y"]), expected.u_ba,
+                               rtol=1e-12)
+    np.testing.assert_allclose(values(traces["ramp sim.: F(t_ba)"]["y"]), expected.F_ba,
+                               rtol=1e-12)
+    assert "LuGre 1995: max F" not in traces
+    status = explorer.page.locator("#sim-status").inner_text()
+    assert status.startswith("Simulated 15 ramps")
+
+
+def test_lugre_toggle(explorer):
+    explorer.open("?sim=0")
+    explorer.page.get_by_label("Show LuGre (1995)").check()
+    explorer.sim_ready()
+    traces = explorer.traces("breakaway")
+    expected = simulate_lugre_breakaway(FIG3_RATES, max_steps=1_000_000)
+    lugre = traces["LuGre 1995: max F"]
+    assert lugre["x"] == list(FIG3_RATES)
+    np.testing.assert_allclose(values(lugre["y"]), expected.F_ba, rtol=1e-12)
+    assert "lugre=1" in explorer.page.url
+    explorer.page.get_by_label("Show LuGre (1995)").uncheck()
+    explorer.ready()
+    explorer.page.wait_for_function(
+        "!document.getElementById('plot-breakaway').data.some(t => t.name.startsWith('LuGre'))")
+
+
+def test_simulate_now_button_runs_with_auto_simulation_off(explorer):
+    explorer.open("?sim=0")
+    assert "ramp sim.: u(t_ba)" not in explorer.traces("breakaway")
+    explorer.page.get_by_role("button", name="Simulate now").click()
+    explorer.sim_ready()
+    assert len(explorer.traces("breakaway")["ramp sim.: u(t_ba)"]["x"]) == len(FIG3_RATES)
+
+
+def test_keyboard_reaches_and_moves_a_slider(explorer):
+    explorer.open("?sim=0")
+    page = explorer.page
+    page.locator("body").focus()
+    for _ in range(40):
+        page.keyboard.press("Tab")
+        focused = page.evaluate("document.activeElement.id")
+        if focused == "k-range":
+            break
+    else:
+        pytest.fail("Tab never reached the k slider")
+    frames = explorer.frames()
+    page.keyboard.press("ArrowRight")
+    explorer.ready()
+    assert explorer.state()["k"] > DEFAULTS["k"]
+    assert explorer.frames() == frames + 1
+    page.keyboard.press("End")
+    explorer.ready()
+    assert explorer.state()["k"] == 30
+    assert_plots_match_model(explorer)
+
+
+def _layout(page):
+    return page.evaluate("""() => {
+        const box = (el) => { const r = el.getBoundingClientRect();
+            return {left: r.left, right: r.right, top: r.top, width: r.width, height: r.height}; };
+        return {
+            scrollWidth: document.documentElement.scrollWidth,
+            innerWidth: window.innerWidth,
+            plots: [...document.querySelectorAll('.plot')].map(box),
+            controls: box(document.getElementById('controls')),
+        };
+    }""")
+
+
+def test_layout_at_1280_by_800(explorer):
+    explorer.open("?sim=0")
+    layout = _layout(explorer.page)
+    assert layout["scrollWidth"] <= layout["innerWidth"]
+    assert len(layout["plots"]) == 4
+    for plot in layout["plots"]:
+        assert plot["width"] >= 350 and plot["height"] >= 240
+        assert 0 <= plot["left"] and plot["right"] <= 1280
+    # the four plots sit in two columns beside the controls
+    assert len({round(plot["left"]) for plot in layout["plots"]}) == 2
+    assert layout["controls"]["right"] <= min(plot["left"] for plot in layout["plots"])
+
+
+def test_phone_width(explorer):
+    explorer.page.set_viewport_size({"width": 390, "height": 844})
+    explorer.open("?sim=0")
+    layout = _layout(explorer.page)
+    assert layout["scrollWidth"] <= layout["innerWidth"]
+    for plot in layout["plots"]:
+        assert plot["left"] >= 0 and plot["right"] <= 390 and plot["width"] >= 300
+    box = explorer.page.get_by_label("Fs [N]", exact=True)
+    box.scroll_into_view_if_needed()
+    box.fill("2")
+    explorer.ready()
+    assert explorer.state()["Fs"] == 2
+    assert_plots_match_model(explorer)

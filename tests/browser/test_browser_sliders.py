@@ -1,0 +1,115 @@
+"""Each slider moves the model: the plots it affects change as the model says, the
+others stay as they were."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from breakaway.dynamics import simulate_breakaway
+from breakaway.params import DEFAULTS, FIG3_RATES
+
+from browser_model import assert_plots_match_model, values
+
+pytestmark = pytest.mark.browser
+
+PLOTS = ("stribeck", "hysteresis", "phase", "breakaway")
+
+# parameter -> (key to press on its slider, plots whose data must change with F̂ = avg)
+SLIDERS = {
+    "Fc": ("ArrowLeft", {"stribeck", "hysteresis", "phase", "breakaway"}),
+    "Fs": ("PageUp", {"stribeck", "hysteresis", "phase", "breakaway"}),
+    # the loop is driven at a peak speed of 0.1·V, so g(v) along it does not depend on V
+    "V": ("PageDown", {"stribeck", "breakaway"}),
+    "delta": ("PageUp", {"stribeck", "hysteresis", "breakaway"}),
+    "sigma": ("End", {"stribeck", "hysteresis", "breakaway"}),
+    "k": ("PageUp", {"phase", "breakaway"}),
+    "s": ("PageUp", {"hysteresis", "phase", "breakaway"}),
+    "z_ba": ("PageDown", {"phase", "breakaway"}),
+}
+
+LABELS = {"Fc": "Fc [N]", "Fs": "Fs [N]", "V": "V [m/s]", "delta": "δ (delta)",
+          "sigma": "σ (sigma) [N·s/m]", "k": "k [N/s]", "s": "s [1/m]", "z_ba": "z* (z_ba)",
+          "m": "m [kg]"}
+
+
+def snapshot(explorer):
+    return {plot: explorer.traces(plot) for plot in PLOTS}
+
+
+@pytest.mark.parametrize("name", list(SLIDERS))
+def test_slider_redraws_the_plots_as_the_model_says(explorer, name):
+    key, affected = SLIDERS[name]
+    explorer.open("?sim=0")
+    before = snapshot(explorer)
+    frames = explorer.frames()
+    slider = explorer.page.get_by_label(f"{LABELS[name]} slider", exact=True)
+    slider.focus()
+    slider.press(key)
+    explorer.ready()
+    state = explorer.state()
+    assert state[name] != DEFAULTS[name]
+    # the number box beside the slider shows the new value
+    box = explorer.page.get_by_label(LABELS[name], exact=True)
+    assert float(box.input_value()) == state[name]
+    assert explorer.frames() > frames
+    assert_plots_match_model(explorer, state)
+    after = snapshot(explorer)
+    changed = {plot for plot in PLOTS if after[plot] != before[plot]}
+    assert changed == affected
+
+
+def test_mass_slider_moves_only_the_simulated_points(explorer):
+    explorer.open("?sim=1")
+    explorer.sim_ready()
+    before = snapshot(explorer)
+    slider = explorer.page.get_by_label("m [kg] slider", exact=True)
+    slider.focus()
+    slider.press("PageUp")
+    explorer.ready()
+    explorer.sim_ready()
+    state = explorer.state()
+    assert state["m"] > DEFAULTS["m"]
+    after = snapshot(explorer)
+    for plot in ("stribeck", "hysteresis", "phase"):
+        assert after[plot] == before[plot]
+    curves = [f"F̂ = {name}" for name in ("Fc", "Fs", "avg", "self")]
+    assert [after["breakaway"][c] for c in curves] == [before["breakaway"][c] for c in curves]
+    simulated = after["breakaway"]["ramp sim.: u(t_ba)"]
+    assert simulated["x"] == list(FIG3_RATES)
+    p = {n: state[n] for n in ("Fc", "Fs", "V", "delta", "sigma", "s", "m", "z_ba")}
+    expected = simulate_breakaway(FIG3_RATES, **p, max_steps=1_000_000)
+    np.testing.assert_allclose(values(simulated["y"]), expected.u_ba, rtol=1e-12)
+    np.testing.assert_allclose(values(after["breakaway"]["ramp sim.: F(t_ba)"]["y"]),
+                               expected.F_ba, rtol=1e-12)
+    assert simulated != before["breakaway"]["ramp sim.: u(t_ba)"]
+
+
+def test_typing_in_a_number_box_moves_its_slider_and_the_plots(explorer):
+    explorer.open("?sim=0")
+    box = explorer.page.get_by_label("Fs [N]", exact=True)
+    box.fill("2.25")
+    explorer.ready()
+    assert explorer.state()["Fs"] == 2.25
+    slider = explorer.page.get_by_label("Fs [N] slider", exact=True)
+    before = int(slider.input_value())
+    assert before > 0
+    assert_plots_match_model(explorer)
+    stribeck = explorer.traces("stribeck")["Fss(v)"]
+    # just right of v = 0 the curve starts near Fs
+    first_positive = next(F for v, F in zip(stribeck["x"], stribeck["y"]) if v > 0)
+    assert 2.0 < first_positive <= 2.25
+
+
+def test_f_hat_choice_redraws_phase_and_breakaway(explorer):
+    explorer.open("?sim=0")
+    before = snapshot(explorer)
+    explorer.page.get_by_label("F̂ (F_hat)", exact=True).select_option("self")
+    explorer.ready()
+    assert explorer.state()["F_hat"] == "self"
+    assert_plots_match_model(explorer)
+    after = snapshot(explorer)
+    assert after["stribeck"] == before["stribeck"] and after["hysteresis"] == before["hysteresis"]
+    assert after["phase"] != before["phase"]
+    assert after["breakaway"]["F̂ = self"] == before["breakaway"]["F̂ = self"]
+    assert after["breakaway"]["current k = 1"] != before["breakaway"]["current k = 1"]

@@ -1,0 +1,153 @@
+"""Inline errors, the URL round trip, history, presets and reset."""
+
+from __future__ import annotations
+
+from urllib.parse import parse_qs, urlparse
+
+import pytest
+
+from breakaway.params import DEFAULTS, PRESET_DESCRIPTIONS, PRESETS
+
+from browser_model import assert_plots_match_model
+
+pytestmark = pytest.mark.browser
+
+PLOTS = ("stribeck", "hysteresis", "phase", "breakaway")
+
+
+def count_explore_requests(page) -> list:
+    seen = []
+    page.on("request", lambda request: "/api/explore" in request.url and seen.append(request))
+    return seen
+
+
+@pytest.mark.parametrize(("label", "text", "field", "message"), [
+    ("Fs [N]", "0.5", "Fs", "Fs must be ≥ Fc"),
+    ("Fc [N]", "abc", "Fc", "Fc must be a number"),
+    ("δ (delta)", "0", "delta", "|δ| ≥ 0.05"),
+    ("z* (z_ba)", "1", "z_ba", "z* must be in (0, 1)"),
+    ("σ (sigma) [N·s/m]", "-0.1", "sigma", "σ must be ≥ 0"),
+    ("k [N/s]", "0", "k", "k must be > 0"),
+])
+def test_invalid_value_shows_inline_error_and_is_not_sent(explorer, label, text, field, message):
+    explorer.open("?sim=0")
+    page = explorer.page
+    before = {plot: explorer.traces(plot) for plot in PLOTS}
+    requests = count_explore_requests(page)
+    box = page.get_by_label(label, exact=True)
+    box.fill(text)
+    explorer.ready()
+    error = page.locator(f"#{field}-error")
+    assert error.is_visible()
+    assert message in error.inner_text()
+    assert box.get_attribute("aria-invalid") == "true"
+    assert page.locator("#plots").get_attribute("data-valid") == "false"
+    assert requests == []
+    assert {plot: explorer.traces(plot) for plot in PLOTS} == before
+    # a valid value clears the error and redraws
+    box.fill(str(DEFAULTS[field]))
+    explorer.ready()
+    assert not error.is_visible()
+    assert box.get_attribute("aria-invalid") == "false"
+    assert len(requests) == 1
+    assert_plots_match_model(explorer)
+
+
+def test_fs_below_fc_by_slider_shows_the_error(explorer):
+    explorer.open("?sim=0&Fc=1&Fs=1")
+    slider = explorer.page.get_by_label("Fs [N] slider", exact=True)
+    slider.focus()
+    slider.press("ArrowLeft")
+    explorer.ready()
+    assert explorer.page.locator("#Fs-error").is_visible()
+    assert explorer.state()["Fs"] < 1
+
+
+def test_url_round_trip_restores_the_view(explorer, browser, server_url):
+    explorer.open("?sim=0")
+    page = explorer.page
+    page.get_by_label("Fc [N]", exact=True).fill("0.8")
+    page.get_by_label("Fc [N]", exact=True).press("Enter")
+    page.get_by_label("V [m/s]", exact=True).fill("12.5")
+    page.get_by_label("V [m/s]", exact=True).press("Tab")
+    page.get_by_label("F̂ (F_hat)", exact=True).select_option("Fs")
+    explorer.ready()
+    query = parse_qs(urlparse(page.url).query)
+    assert query["Fc"] == ["0.8"] and query["V"] == ["12.5"] and query["F_hat"] == ["Fs"]
+    state = explorer.state()
+    shown = {plot: explorer.traces(plot) for plot in PLOTS}
+
+    context = browser.new_context(viewport={"width": 1280, "height": 800})
+    try:
+        other = context.new_page()
+        other.goto(page.url)
+        other.evaluate("window.breakaway.ready()")
+        assert other.evaluate("window.breakaway.state()") == state
+        assert other.get_by_label("V [m/s]", exact=True).input_value() == "12.5"
+        assert other.get_by_label("F̂ (F_hat)", exact=True).input_value() == "Fs"
+        for plot in PLOTS:
+            traces = other.evaluate(
+                """(id) => document.getElementById('plot-' + id).data.map(t => (
+                    {name: t.name, x: Array.from(t.x), y: Array.from(t.y),
+                     customdata: t.customdata ? Array.from(t.customdata) : null}))""", plot)
+            assert {t["name"]: t for t in traces} == shown[plot]
+    finally:
+        context.close()
+
+
+def test_back_and_forward_walk_the_history(explorer):
+    explorer.open("?sim=0")
+    page = explorer.page
+    k_box = page.get_by_label("k [N/s]", exact=True)
+    k_box.fill("5")
+    k_box.press("Enter")
+    explorer.ready()
+    k_box.fill("12")
+    k_box.press("Enter")
+    explorer.ready()
+    assert explorer.state()["k"] == 12
+    page.go_back()
+    explorer.ready()
+    assert explorer.state()["k"] == 5
+    assert k_box.input_value() == "5"
+    assert_plots_match_model(explorer)
+    page.go_back()
+    explorer.ready()
+    assert explorer.state()["k"] == DEFAULTS["k"]
+    page.go_forward()
+    explorer.ready()
+    assert explorer.state()["k"] == 5
+    assert_plots_match_model(explorer)
+
+
+def test_invalid_value_in_the_url_is_shown_not_sent(explorer):
+    explorer.open("?sim=0&Fs=0.2")
+    assert explorer.page.locator("#Fs-error").is_visible()
+    assert explorer.page.get_by_label("Fs [N]", exact=True).input_value() == "0.2"
+    assert explorer.frames() == 0
+
+
+@pytest.mark.parametrize("name", ["lugre-1995", "sharp-stribeck", "strengthening"])
+def test_preset_loads(explorer, name):
+    explorer.open("?sim=0")
+    explorer.page.get_by_label("Preset", exact=True).select_option(name)
+    explorer.ready()
+    state = explorer.state()
+    for key, value in PRESETS[name].items():
+        assert state[key] == value
+    assert explorer.page.locator("#preset-description").inner_text() == PRESET_DESCRIPTIONS[name]
+    assert parse_qs(urlparse(explorer.page.url).query)["V"] == [str(PRESETS[name]["V"])
+                                                              .removesuffix(".0")]
+    assert_plots_match_model(explorer)
+
+
+def test_reset_returns_to_the_defaults(explorer):
+    explorer.open("?sim=0&Fc=0.5&Fs=3&k=7&F_hat=self")
+    assert explorer.state()["Fs"] == 3
+    explorer.page.get_by_role("button", name="Reset", exact=True).click()
+    explorer.ready()
+    state = explorer.state()
+    for key, value in DEFAULTS.items():
+        assert state[key] == value
+    assert explorer.page.get_by_label("Preset", exact=True).input_value() == "fig5"
+    assert_plots_match_model(explorer)
