@@ -247,7 +247,7 @@ def _stderr(problem, result, n):
 
 
 def fit_model(data: Dataset, effects=(), starts=None, rows=None, max_nfev=None,
-              screen=3) -> FitResult:
+              screen=3, fixed=None) -> FitResult:
     """Fit the model with ``effects`` to ``data`` by bounded least squares.
 
     Parameters
@@ -266,12 +266,14 @@ def fit_model(data: Dataset, effects=(), starts=None, rows=None, max_nfev=None,
         Evaluation budget of the final polish.
     screen : int, optional
         The best ``screen`` starts (by their initial cost) are polished.
+    fixed : dict, optional
+        Parameters held at given values (their ``stderr`` is reported as 0).
 
     Returns
     -------
     FitResult
     """
-    problem = Problem(data, tuple(effects))
+    problem = Problem(data, tuple(effects), dict(fixed or {}))
     rows = np.arange(data.n) if rows is None else np.asarray(rows)
     if rows.dtype == bool:
         rows = np.flatnonzero(rows)
@@ -304,7 +306,8 @@ def fit_model(data: Dataset, effects=(), starts=None, rows=None, max_nfev=None,
     prediction = problem.predict(params)
     r = problem.measured[rows] - prediction[rows]
     rss = float(np.dot(r, r))
-    return FitResult(tuple(effects), params, _stderr(problem, best, n),
+    stderr = {**_stderr(problem, best, n), **{name: 0.0 for name in problem.fixed}}
+    return FitResult(tuple(effects), params, stderr,
                      math.sqrt(rss / n), bic(rss, n, len(problem.names)), n, prediction,
                      problem)
 
@@ -337,7 +340,33 @@ def fit_with_effect(data: Dataset, current: FitResult, effect: str, rows=None,
     starts = []
     for origin in (current.params, *restarts):
         starts.extend({**current.params, **origin, **extra} for extra in extras)
+    if effect in PROFILED:
+        return _profiled_fit(data, problem.effects, PROFILED[effect], starts, rows)
     return fit_model(data, problem.effects, starts=starts, rows=rows, screen=screen)
+
+
+#: Effects whose parameter switches the model discretely (the play engages or not):
+#: finite differences cannot move it, so it is profiled on its grid of starts and 0.
+PROFILED = {"backlash": "play"}
+
+
+def _profiled_fit(data, effects, name, starts, rows):
+    """Fit with ``name`` held at each start's value (and 0), then free from the best."""
+    by_value = {}
+    for start in starts:
+        by_value.setdefault(start[name], []).append(start)
+    zero = {**starts[0], name: 0.0}
+    by_value.setdefault(0.0, [zero])
+    best = None
+    n_free = len(Problem(data, effects).names) - 1
+    for value, group in by_value.items():
+        fit = fit_model(data, effects, starts=group, rows=rows, screen=1, fixed={name: value},
+                        max_nfev=15 * (n_free + 1))
+        if best is None or fit.bic < best.bic:
+            best = fit
+    free = fit_model(data, effects, starts=[best.params], rows=rows, screen=1)
+    return free if free.bic <= best.bic else fit_model(
+        data, effects, starts=[best.params], rows=rows, screen=1, max_nfev=1)
 
 
 __all__ = ["FitError", "FitResult", "base_starts", "best_base_starts", "bic", "effect_starts",

@@ -142,10 +142,13 @@ class Problem:
         Parsed measurement (:mod:`breakaway.identify.csvdata`).
     effects : tuple of str
         Names from :data:`breakaway.identify.effects.EFFECTS`.
+    fixed : dict, optional
+        Parameters held at the given values (left out of θ), e.g. a profiled play.
     """
 
     data: Dataset
     effects: tuple[str, ...] = ()
+    fixed: dict = field(default_factory=dict)
     names: tuple[str, ...] = field(init=False)
     measured: np.ndarray = field(init=False)
     scales: Scales = field(init=False)
@@ -157,7 +160,10 @@ class Problem:
         names = list(BASE_PARAMS[kind])
         for effect in self.effects:
             names.extend(EFFECTS[effect].params)
-        self.names = tuple(names)
+        unknown = set(self.fixed) - set(names)
+        if unknown:
+            raise ValueError(f"cannot fix {sorted(unknown)}: not parameters of this model")
+        self.names = tuple(n for n in names if n not in self.fixed)
         cols = self.data.columns
         if kind == "timeseries":
             self.t, self.x = cols["t"], cols["x"]
@@ -217,6 +223,7 @@ class Problem:
             p["Fs"] += p["Fc"]
         if "Fs_neg" in p:
             p["Fs_neg"] += p["Fc_neg"]
+        p.update(self.fixed)
         return p
 
     def bounds(self):
