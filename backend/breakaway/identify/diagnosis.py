@@ -2,7 +2,8 @@
 
 1. Fit the base model; estimate the noise floor without any model.
 2. While the residual is not white: fit every remaining candidate effect of §7 (all
-   parameters refitted, starts taken from the residual), and accept the one with the
+   parameters refitted, starts taken from the residual; every round tries them all,
+   since a large effect can mask a small one), and accept the one with the
    lowest BIC among those that pass every gate — the BIC falls by at least
    :data:`MIN_BIC_DROP`, the error falls by a share of the structured residual that an
    effect would have to explain (:data:`MIN_EXCESS_EXPLAINED`), and the held-out error

@@ -361,7 +361,7 @@ def _profiled_fit(data, effects, name, starts, rows):
     n_free = len(Problem(data, effects).names) - 1
     for value, group in by_value.items():
         fit = fit_model(data, effects, starts=group, rows=rows, screen=1, fixed={name: value},
-                        max_nfev=15 * (n_free + 1))
+                        max_nfev=8 * (n_free + 1))
         if best is None or fit.bic < best.bic:
             best = fit
     free = fit_model(data, effects, starts=[best.params], rows=rows, screen=1)
