@@ -25,7 +25,8 @@ class Settings(BaseSettings):
     #: Caps on grid sizes and rate lists in requests.
     max_grid_points: int = 5000
     max_rates: int = 64
-    #: Significant digits of the floats in /api/explore (payload size; 7 keeps 5e-7 relative).
+    #: Significant digits of /api/explore floats when they cannot go as float32 (see
+    #: api/encoding.py; 7 digits keep the relative error below 5e-7).
     payload_digits: int = 7
     #: Ramp simulations run in a worker process so that a slow one never blocks the
     #: explorer: its wall-clock budget per request [s] and step budget per rate.

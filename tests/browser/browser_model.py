@@ -9,7 +9,7 @@ from breakaway.presliding import hysteresis_loop
 from breakaway.quasistatic import breakaway_force, presliding_velocity
 from breakaway.steady import steady_state_force
 
-#: Plotted values carry 7 significant digits (relative error <= 5e-7).
+#: Plotted values carry float32 precision or 7 significant digits (relative error <= 5e-7).
 RTOL = 1e-6
 
 
