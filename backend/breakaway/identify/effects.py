@@ -56,13 +56,35 @@ EFFECTS: dict[str, Effect] = {e.name: e for e in (
 )}
 
 
+#: Rows needed in each direction before separate negative-direction levels can be fitted.
+MIN_ROWS_PER_DIRECTION = 5
+
+
+def _both_directions(kind: str, columns) -> bool:
+    import numpy as np
+
+    if kind == "steady":
+        v = np.asarray(columns["v"])
+    elif kind == "breakaway":
+        if "direction" not in columns:
+            return False
+        v = np.asarray(columns["direction"])
+    else:
+        v = np.diff(np.asarray(columns["x"]))
+    return min(np.count_nonzero(v > 0), np.count_nonzero(v < 0)) >= MIN_ROWS_PER_DIRECTION
+
+
 def candidates(kind: str, columns) -> list[str]:
-    """Effects of the library that apply to ``kind`` given the available ``columns``."""
+    """Effects of the library that apply to ``kind`` and that the data can determine:
+    the columns they need are there, ``asymmetry`` sees motion both ways and ``dwell``
+    at least two dwell times."""
     names = []
     for effect in EFFECTS.values():
         if kind not in effect.kinds or not all(c in columns for c in effect.needs):
             continue
-        if kind == "breakaway" and effect.name == "asymmetry" and "direction" not in columns:
+        if effect.name == "asymmetry" and not _both_directions(kind, columns):
             continue
+        if effect.name == "dwell" and len(set(map(float, columns["dwell"]))) < 2:
+            continue  # one dwell time only rescales Fs
         names.append(effect.name)
     return names
