@@ -60,7 +60,7 @@ class Diagnosis:
     heldout_after: float
     white: bool
     unexplained: bool
-    tried: dict = field(default_factory=dict)  # effect -> (rmse, bic) of the last round
+    tried: dict = field(default_factory=dict)  # effect -> (rmse, bic, heldout) of the last round
     seconds: float = 0.0
 
     @property
@@ -134,13 +134,14 @@ def _diagnose(data: Dataset, progress) -> Diagnosis:
                 trials[effect] = fit_with_effect(data, current, effect, restarts=restarts)
             except ValueError:
                 continue
-        tried = {e: (f.rmse, f.bic) for e, f in trials.items()}
+        tried = {e: (f.rmse, f.bic, None) for e, f in trials.items()}
         chosen = None
         for effect in sorted(trials, key=lambda e: trials[e].bic):
             trial = trials[effect]
             if not _passes(current, trial, noise):
                 continue
             trial_heldout = _heldout_error(data, trial, train, test)
+            tried[effect] = (trial.rmse, trial.bic, trial_heldout)
             if trial_heldout < current_heldout:
                 chosen = effect, trial, trial_heldout
                 break
@@ -198,8 +199,10 @@ def report(diagnosis: Diagnosis) -> dict:
     """The §8 identification report as a JSON-ready dict.
 
     Besides the §8 keys, each model entry carries ``stderr`` (standard errors of its
-    parameters, ``null`` where the data do not determine one) and the report carries
-    ``seconds`` (wall time of the diagnosis).
+    parameters, ``null`` where the data do not determine one), and the report carries
+    ``candidates`` (each effect tried in the last round against the model it would have
+    extended: its RMSE and BIC, and its held-out error where it passed the other gates)
+    and ``seconds`` (wall time of the diagnosis).
     """
     d = diagnosis
     return {
@@ -216,5 +219,8 @@ def report(diagnosis: Diagnosis) -> dict:
         "heldout": {"before": _clean(d.heldout_before), "after": _clean(d.heldout_after)},
         "residual_white": bool(d.white),
         "unexplained": bool(d.unexplained),
+        "candidates": {e: {"rmse": _clean(rmse), "bic": _clean(b),
+                           "heldout": None if h is None else _clean(h)}
+                       for e, (rmse, b, h) in d.tried.items()},
         "seconds": round(d.seconds, 3),
     }
