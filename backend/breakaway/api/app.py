@@ -14,7 +14,7 @@ from ..settings import get_settings
 from .errors import request_validation_handler
 from .middleware import BodySizeLimit, CatchAll, SecurityHeaders
 from .fitjobs import FitJobs
-from .routers import assets, explore, fit, health, presets, simulate
+from .routers import assets, explore, fit, health, presets, samples, simulate
 from .simulation import SimulationRunner
 
 #: The API, one router per resource.
@@ -24,6 +24,7 @@ ROUTERS: list[APIRouter] = [
     explore.router,
     simulate.router,
     fit.router,
+    samples.router,
     assets.router,
 ]
 

@@ -52,3 +52,10 @@ class FitJobStatus(BaseModel):
     error: str | None = None
     report: FitReport | None = None
     series: dict | None = None
+
+
+class SampleInfo(BaseModel):
+    name: str
+    title: str
+    kind: Literal["timeseries", "steady", "breakaway"]
+    description: str

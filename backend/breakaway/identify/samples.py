@@ -1,0 +1,78 @@
+"""Sample datasets for the explorer's data panel: the measured damper excerpt and
+"mystery" synthetic sets, each with an effect the file does not declare."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from importlib import resources
+
+import numpy as np
+from scipy.signal import lfilter
+
+from .synthetic import NOISE, make_dataset, to_csv, with_force
+
+#: Rows of the synthetic timeseries samples (a quick fit in the browser).
+_SAMPLE_ROWS = 8000
+
+
+@dataclass(frozen=True)
+class Sample:
+    name: str
+    title: str
+    kind: str
+    description: str
+
+    def csv(self) -> str:
+        return _MAKERS[self.name]()
+
+
+def _mystery(kind, effects, seed):
+    def make():
+        data, _ = make_dataset(kind, effects, seed=seed,
+                               n=_SAMPLE_ROWS if kind == "timeseries" else None)
+        return to_csv(data, comment="synthetic sample (seeded); which effect is in it is "
+                                    "for the fit to find")
+    return make
+
+
+def _outside_library():
+    data, _ = make_dataset("timeseries", (), seed=31, noise=0.0, n=_SAMPLE_ROWS)
+    F = data.columns["F"]
+    delayed = np.concatenate([np.full(15, F[0]), F[:-15]])
+    a = np.exp(-1e-3 / 0.02)
+    filtered = lfilter([1 - a], [1, -a], delayed, zi=[a * delayed[0]])[0]
+    noisy = filtered + NOISE["timeseries"] * np.random.default_rng(31).standard_normal(F.size)
+    return to_csv(with_force(data, noisy), comment="synthetic sample (seeded)")
+
+
+def _damper():
+    return (resources.files("breakaway") / "samples" /
+            "brfd_sine_1Hz_1in_36lb_excerpt.csv").read_text(encoding="utf-8")
+
+
+SAMPLES: dict[str, Sample] = {s.name: s for s in (
+    Sample("damper", "Measured: friction damper, 1 Hz", "timeseries",
+           "4 s of a banded rotary friction damper under a 1 Hz sine (ARTS-Lab, CC BY-SA 4.0)."),
+    Sample("mystery-a", "Mystery A (time series)", "timeseries",
+           "An actuator moved back and forth; something shows right after each reversal."),
+    Sample("mystery-b", "Mystery B (time series)", "timeseries",
+           "The same actuator; the force wobbles as it slides."),
+    Sample("mystery-c", "Mystery C (Stribeck curve)", "steady",
+           "Steady sliding at many speeds, both directions."),
+    Sample("mystery-d", "Mystery D (break-away)", "breakaway",
+           "Break-away forces at many rates after different rest times."),
+    Sample("plain", "Plain: nothing missing (time series)", "timeseries",
+           "Data from the base model only: the fit should add nothing."),
+    Sample("outside", "Outside the library (time series)", "timeseries",
+           "An effect the library does not know: the fit should say so."),
+)}
+
+_MAKERS = {
+    "damper": _damper,
+    "mystery-a": _mystery("timeseries", ("backlash",), 21),
+    "mystery-b": _mystery("timeseries", ("ripple",), 22),
+    "mystery-c": _mystery("steady", ("asymmetry",), 23),
+    "mystery-d": _mystery("breakaway", ("dwell",), 24),
+    "plain": _mystery("timeseries", (), 25),
+    "outside": _outside_library,
+}
