@@ -34,6 +34,7 @@ import numpy as np
 from numba import njit
 
 from .params import LUGRE_1995, _finite, check_fraction, check_positive, check_stribeck
+from .presliding import shape_scalar
 
 # ---------------------------------------------------------------------------------
 # shared model pieces
@@ -69,12 +70,7 @@ _P_FC, _P_FS, _P_V, _P_DELTA, _P_SIGMA, _P_S, _P_M, _P_K, _P_ZBA = range(9)
 @njit(cache=True)
 def _presliding_force(t, y, p, mem):
     z = p[_P_S] * abs(y[0] - mem[0])
-    if z >= 1.0:
-        shape = 1.0
-    elif z > 0.0:
-        shape = z * (1.0 - math.log(z))
-    else:
-        shape = 0.0
+    shape = shape_scalar(z)
     target = mem[2] * _g(y[1], p[_P_FC], p[_P_FS], p[_P_V], p[_P_DELTA]) + p[_P_SIGMA] * y[1]
     return mem[1] + (target - mem[1]) * shape
 

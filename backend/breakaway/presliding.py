@@ -75,6 +75,16 @@ def motion_direction(x):
 
 
 @njit(cache=True)
+def shape_scalar(z):
+    """f(z) of (E4) for one ``z >= 0`` in compiled loops: 0 at 0, 1 from z = 1 on."""
+    if z >= 1.0:
+        return 1.0
+    if z > 0.0:
+        return z * (1.0 - np.log(z))
+    return 0.0
+
+
+@njit(cache=True)
 def _presliding_kernel(x, d, target, s, F_r0):
     """Run (E6') sample by sample: ``F = F_r + (target − F_r)·f(z)``.
 
@@ -89,12 +99,7 @@ def _presliding_kernel(x, d, target, s, F_r0):
             x_r = x[i - 1]
             F_r = F[i - 1]
         z = s * abs(x[i] - x_r)
-        if z >= 1.0:
-            shape = 1.0
-        elif z > 0.0:
-            shape = z * (1.0 - np.log(z))
-        else:
-            shape = 0.0
+        shape = shape_scalar(z)
         F[i] = F_r + (target[i] - F_r) * shape
     return F
 

@@ -15,7 +15,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from numba import njit
 
-from ..presliding import _presliding_kernel, motion_direction
+from ..presliding import _presliding_kernel, motion_direction, shape_scalar
 from .csvdata import Dataset
 
 BASE_PARAMS = {
@@ -98,12 +98,7 @@ def _engaged_kernel(xc, d, target, s, F_r0, engaged):
                 x_r = xc[i - 1]
                 F_r = friction[i - 1]
         z = s * abs(xc[i] - x_r)
-        if z >= 1.0:
-            shape = 1.0
-        elif z > 0.0:
-            shape = z * (1.0 - math.log(z))
-        else:
-            shape = 0.0
+        shape = shape_scalar(z)
         friction[i] = F_r + (target[i] - F_r) * shape
         out[i] = friction[i] if engaged[i] else 0.0
     return out
