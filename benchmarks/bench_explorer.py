@@ -387,6 +387,26 @@ async ({moves, newPlot}) => {
 }
 """
 
+FETCH_LATENCY = """
+async ({bodies, repeat}) => {
+  const time = async (path, body) => {
+    const t0 = performance.now();
+    const response = await fetch(path, {method: 'POST', body,
+                                        headers: {'Content-Type': 'application/json'}});
+    await response.json();
+    return performance.now() - t0;
+  };
+  const out = {explore: [], empty: []};
+  for (let i = 0; i < repeat + 10; i++) {
+    const body = bodies[i % bodies.length];
+    const explore = await time('/api/explore', body);
+    const empty = await time('/bench/empty', body);
+    if (i >= 10) { out.explore.push(explore); out.empty.push(empty); }
+  }
+  return out;
+}
+"""
+
 SLIDER_POSITIONS = {"Fc": (400, 500), "Fs": (500, 600), "V": (600, 800), "delta": (90, 140),
                     "sigma": (0, 500), "k": (0, 1000), "s": (200, 400), "z_ba": (50, 97)}
 
@@ -407,6 +427,15 @@ def bench_browser(repeat: int) -> None:
             executable_path=chromium, headless=True,
             args=["--no-sandbox", "--disable-gpu", "--disable-background-networking",
                   "--disable-component-update", "--disable-sync"])
+        page = browser.new_page()
+        page.goto(f"{server.url}/?sim=0")
+        bodies = [json.dumps(b) for b in slider_bodies(64)]
+        fetched = page.evaluate(FETCH_LATENCY, {"bodies": bodies, "repeat": repeat})
+        page.close()
+        explore, empty = fetched["explore"], fetched["empty"]
+        print(f"   fetch() + response.json() from the page: explore p50 {pct(explore, .5):5.2f} ms, "
+              f"empty POST p50 {pct(empty, .5):5.2f} ms: {pct(explore, .5) / pct(empty, .5):.2f}x "
+              f"the floor")
         for label, new_plot in (("Plotly.react (explorer)", False),
                                 ("Plotly.purge + newPlot", True)):
             page = browser.new_page(viewport={"width": 1280, "height": 800})

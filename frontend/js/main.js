@@ -31,6 +31,7 @@ const app = {
   state: null,
   frame: null,
   frames: 0,
+  reacts: 0, // Plotly.react calls (plots whose figure did not change are left alone)
   version: 0,
   exploreController: null,
   busy: true,
@@ -124,19 +125,52 @@ function refresh() {
     });
 }
 
+/** Deep equality of figures; arrays element by element (they come fresh each frame). */
+function sameFigure(a, b) {
+  if (a === b) return true;
+  if (typeof a !== "object" || typeof b !== "object" || a === null || b === null) {
+    return Number.isNaN(a) && Number.isNaN(b);
+  }
+  if (Array.isArray(a) !== Array.isArray(b)) return false;
+  if (Array.isArray(a)) {
+    if (a.length !== b.length) return false;
+    for (let i = 0; i < a.length; i += 1) {
+      const x = a[i];
+      const y = b[i];
+      if (x !== y && !(typeof x === "object" && sameFigure(x, y))) return false;
+    }
+    return true;
+  }
+  const keys = Object.keys(a);
+  if (keys.length !== Object.keys(b).length) return false;
+  return keys.every((key) => key in b && sameFigure(a[key], b[key]));
+}
+
+// plot id -> what it shows: the traces, and the layout as JSON taken before Plotly
+// writes its computed ranges into the layout object
+const drawn = {};
+
+/** Plotly.react on every plot whose figure changed; an unchanged plot already shows it. */
+function react(id, figure) {
+  const layoutKey = JSON.stringify(figure.layout);
+  const last = drawn[id];
+  if (last && last.layoutKey === layoutKey && sameFigure(last.data, figure.data)) {
+    return Promise.resolve();
+  }
+  drawn[id] = { data: figure.data, layoutKey };
+  app.reacts += 1;
+  return window.Plotly.react($(`plot-${id}`), figure.data, figure.layout, PLOT_CONFIG);
+}
+
 function draw() {
   const figs = figures(app.frame, app.state, app.sim, app.state.lugre ? app.lugre : null);
-  return Promise.all(PLOT_IDS.map((id) => {
-    const { data, layout } = figs[id];
-    return window.Plotly.react($(`plot-${id}`), data, layout, PLOT_CONFIG);
-  }));
+  return Promise.all(PLOT_IDS.map((id) => react(id, figs[id])));
 }
 
 function drawBreakaway() {
   if (!app.frame) return Promise.resolve();
-  const { data, layout } = breakawayFigure(app.frame, app.state, app.sim,
-    app.state.lugre ? app.lugre : null);
-  return window.Plotly.react($("plot-breakaway"), data, layout, PLOT_CONFIG);
+  return react("breakaway", breakawayFigure(app.frame, app.state, app.sim,
+    app.state.lugre ? app.lugre : null));
 }
 
 function showServerError(error) {
@@ -368,6 +402,7 @@ window.breakaway = {
   state: () => JSON.parse(JSON.stringify(app.state)),
   /** Completed redraws, and the last one's duration (input to plots drawn) [ms]. */
   frames: () => app.frames,
+  reacts: () => app.reacts,
   lastRedrawMs: () => app.lastRedrawMs,
 };
 
