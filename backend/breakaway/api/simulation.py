@@ -12,7 +12,9 @@ from __future__ import annotations
 import asyncio
 import logging
 import multiprocessing
+import os
 import threading
+import time
 from concurrent.futures import Future, ProcessPoolExecutor
 from concurrent.futures.process import BrokenProcessPool
 from typing import Any
@@ -46,6 +48,18 @@ def _nullable(values) -> list[float | None]:
     return [float(v) if v == v and abs(v) != float("inf") else None for v in values]
 
 
+def _exit_with_parent(parent: int) -> None:
+    """Worker initializer: end this worker when the server that started it is gone
+    (killed without its shutdown running), instead of lingering as an orphan."""
+
+    def watch() -> None:
+        while os.getppid() == parent:
+            time.sleep(1.0)
+        os._exit(0)
+
+    threading.Thread(target=watch, name="exit-with-parent", daemon=True).start()
+
+
 def _warm_up() -> bool:
     """Load the compiled integrator in the worker (numba's disk cache: ~0.3 s)."""
     run_simulation("presliding", [1.0], {}, 10_000)
@@ -63,7 +77,9 @@ class SimulationRunner:
         with self._lock:
             if self._pool is None:
                 context = multiprocessing.get_context("spawn")
-                self._pool = ProcessPoolExecutor(max_workers=1, mp_context=context)
+                self._pool = ProcessPoolExecutor(max_workers=1, mp_context=context,
+                                                 initializer=_exit_with_parent,
+                                                 initargs=(os.getpid(),))
             return self._pool
 
     def warm_up(self) -> Future:
@@ -88,16 +104,17 @@ class SimulationRunner:
 
     def _restart(self) -> None:
         """End the worker that is stuck in a long run; the next request starts a new one."""
+        self.shutdown()
+
+    def shutdown(self) -> None:
+        """End the worker now: it holds no state, and a running simulation is abandoned."""
         with self._lock:
             pool, self._pool = self._pool, None
         if pool is None:
             return
-        for process in list(getattr(pool, "_processes", {}).values()):
+        processes = list((getattr(pool, "_processes", None) or {}).values())
+        for process in processes:
             process.kill()
         pool.shutdown(wait=False, cancel_futures=True)
-
-    def shutdown(self) -> None:
-        with self._lock:
-            pool, self._pool = self._pool, None
-        if pool is not None:
-            pool.shutdown(wait=False, cancel_futures=True)
+        for process in processes:
+            process.join(timeout=5)
