@@ -14,7 +14,7 @@ from scipy.optimize import least_squares
 from scipy.signal import lombscargle
 
 from .csvdata import Dataset
-from .models import Problem
+from .models import LOG_PARAMS, Problem
 
 
 class FitError(ValueError):
@@ -52,10 +52,6 @@ class FitResult:
     n: int
     prediction: np.ndarray
     problem: Problem
-
-    @property
-    def n_params(self) -> int:
-        return len(self.problem.names)
 
     def residual(self) -> np.ndarray:
         """Measured minus predicted F for every row [N]."""
@@ -228,7 +224,7 @@ def _stderr(problem, result, n):
     params = problem.to_params(result.x)
     G = np.zeros((p, p))
     for i, name in enumerate(names):
-        if name in ("V", "s", "wavelength", "tau_d"):
+        if name in LOG_PARAMS:
             G[i, i] = params[name]
         else:
             G[i, i] = 1.0

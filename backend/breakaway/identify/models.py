@@ -205,7 +205,7 @@ class Problem:
                 value = params["Fs"] - params["Fc"]
             elif name == "Fs_neg":
                 value = params["Fs_neg"] - params["Fc_neg"]
-            elif name in _LOG_PARAMS:
+            elif name in LOG_PARAMS:
                 value = math.log(value)
             theta.append(value)
         return np.clip(np.array(theta, dtype=float), *self.bounds())
@@ -213,7 +213,7 @@ class Problem:
     def to_params(self, theta) -> dict:
         p = {}
         for name, value in zip(self.names, np.asarray(theta, dtype=float)):
-            p[name] = math.exp(value) if name in _LOG_PARAMS else float(value)
+            p[name] = math.exp(value) if name in LOG_PARAMS else float(value)
         if "Fs" in p:
             p["Fs"] += p["Fc"]
         if "Fs_neg" in p:
@@ -323,7 +323,8 @@ class Problem:
 #: travel, duration, accel, step, dwell of kinds without a motion record (unused there,
 #: but finite so every bound is defined)
 _NO_MOTION = (1.0, 1.0, 1.0, 1.0, 0.0)
-_LOG_PARAMS = frozenset({"V", "s", "wavelength", "tau_d"})
+#: Parameters that θ carries as logarithms.
+LOG_PARAMS = frozenset({"V", "s", "wavelength", "tau_d"})
 
 
 def _robust_scale(values) -> float:
