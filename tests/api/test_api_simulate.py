@@ -135,3 +135,26 @@ def test_over_the_time_budget_is_a_422_and_the_worker_recovers(make_client):
             60.0, "presliding", [1.0], params, 1_000_000))
     expected = simulate_breakaway([1.0], **params, max_steps=1_000_000)
     assert result["u_ba"][0] == pytest.approx(expected.u_ba[0], rel=1e-12)
+
+
+def test_one_run_at_a_time_and_waiting_counts_against_the_budget():
+    from breakaway.api.simulation import SimulationRunner, SimulationTimeout
+
+    runner = SimulationRunner()
+    params = {name: DEFAULTS[name] for name in ("Fc", "Fs", "V", "delta", "sigma", "s", "m",
+                                                  "z_ba")}
+
+    async def scenario():
+        # the first run holds the worker (starting it alone takes far over 0.2 s)
+        first = asyncio.create_task(runner.run(60.0, "presliding", [0.01], params, 1_000_000))
+        await asyncio.sleep(0.05)
+        with pytest.raises(SimulationTimeout, match="busy"):
+            await runner.run(0.2, "presliding", [1.0], params, 1_000_000)
+        return await first
+
+    try:
+        result = asyncio.run(scenario())
+    finally:
+        runner.shutdown()
+    expected = simulate_breakaway([0.01], **params, max_steps=1_000_000)
+    assert result["u_ba"][0] == pytest.approx(expected.u_ba[0], rel=1e-12)

@@ -71,7 +71,8 @@ class SimulationRunner:
 
     def __init__(self) -> None:
         self._pool: ProcessPoolExecutor | None = None
-        self._lock = threading.Lock()
+        self._lock = threading.Lock()  # guards _pool
+        self._turn: asyncio.Lock | None = None  # one run at a time (made on the loop)
 
     def _executor(self) -> ProcessPoolExecutor:
         with self._lock:
@@ -86,21 +87,35 @@ class SimulationRunner:
         return self._executor().submit(_warm_up)
 
     async def run(self, timeout: float, *args: Any) -> dict[str, Any]:
-        """``run_simulation(*args)`` in the worker; a worker that died is replaced once."""
-        for attempt in (1, 2):
-            try:
-                future = self._executor().submit(run_simulation, *args)
-                return await asyncio.wait_for(asyncio.wrap_future(future), timeout)
-            except asyncio.TimeoutError:
-                self._restart()
-                raise SimulationTimeout(
-                    f"the simulation took longer than {timeout:g} s") from None
-            except BrokenProcessPool:
-                log.warning("simulation worker died (attempt %d); starting a new one", attempt)
-                self._restart()
-                if attempt == 2:
-                    raise
-        raise AssertionError("unreachable")
+        """``run_simulation(*args)`` in the worker, one run at a time, each within
+        ``timeout`` [s] of waiting plus running; a worker that died is replaced once."""
+        deadline = asyncio.get_running_loop().time() + timeout
+        if self._turn is None:
+            self._turn = asyncio.Lock()
+        try:
+            await asyncio.wait_for(self._turn.acquire(), timeout)
+        except asyncio.TimeoutError:
+            raise SimulationTimeout(
+                f"the simulator stayed busy for {timeout:g} s") from None
+        try:
+            for attempt in (1, 2):
+                remaining = max(deadline - asyncio.get_running_loop().time(), 0.0)
+                try:
+                    future = self._executor().submit(run_simulation, *args)
+                    return await asyncio.wait_for(asyncio.wrap_future(future), remaining)
+                except asyncio.TimeoutError:
+                    self._restart()  # only this request's run is in the worker
+                    raise SimulationTimeout(
+                        f"the simulation took longer than {timeout:g} s") from None
+                except BrokenProcessPool:
+                    log.warning("simulation worker died (attempt %d); starting a new one",
+                                attempt)
+                    self._restart()
+                    if attempt == 2:
+                        raise
+            raise AssertionError("unreachable")
+        finally:
+            self._turn.release()
 
     def _restart(self) -> None:
         """End the worker that is stuck in a long run; the next request starts a new one."""
