@@ -3,9 +3,10 @@
 from __future__ import annotations
 
 from fastapi import APIRouter, Request
+from fastapi.exceptions import RequestValidationError
 
 from ...settings import get_settings
-from ..errors import model_errors, unprocessable
+from ..errors import model_errors
 from ..schemas import SimulateRequest, SimulateResponse
 from ..simulation import SimulationTimeout
 
@@ -29,6 +30,6 @@ async def simulate(body: SimulateRequest, request: Request) -> SimulateResponse:
                 settings.simulate_timeout_s, body.model, body.k, params,
                 settings.simulate_max_steps)
     except SimulationTimeout as exc:
-        return unprocessable([{"type": "simulation_timeout", "loc": ["body", "k"],
-                               "msg": f"{exc}; ask for fewer or larger rates"}])
+        raise RequestValidationError([{"type": "simulation_timeout", "loc": ("body", "k"),
+                                       "msg": f"{exc}; ask for fewer or larger rates"}]) from exc
     return SimulateResponse(model=body.model, params=params, **result)
