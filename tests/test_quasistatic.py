@@ -276,3 +276,20 @@ def test_defaults_match_the_preset():
     np.testing.assert_array_equal(
         breakaway_force(FIG3_RATES, **P),
         breakaway_force(FIG3_RATES, **P, s=1.0, sigma=0.0, F_hat="avg", z_ba=0.95))
+
+
+@pytest.mark.parametrize("params", [
+    (1.0, 1.5, 100.0, 1.0, 0.0),  # increasing ẋ·Fss: the Newton path
+    (1.0, 1.5, 20.0, -1.0, 0.0),  # velocity strengthening: increasing too
+    (0.1, 1.5, 5.0, 8.0, 0.0),  # turns back; roots at the top of the bracket
+    (1.0, 3.0, 5.0, 4.0, 0.0),  # turns back; three roots for some c
+])
+def test_self_root_is_exact_on_both_solver_paths(params):
+    # regression: a converged Newton step on the bracket's edge was thrown away, and the
+    # grid missed roots where round-off put the bracket's top a hair below the target
+    Fc, Fs, V, delta, sigma = params
+    k = np.linspace(0.01, 30.0, 200)
+    c = k / -np.log(0.95)
+    v = presliding_velocity(0.95, k, Fc, Fs, V, delta, 1.0, sigma, "self")
+    residual = v * steady_state_force(v, Fc, Fs, V, delta, sigma) - c
+    np.testing.assert_allclose(residual / c, 0.0, atol=1e-12)

@@ -16,9 +16,11 @@ import numpy as np
 from .params import FIG3_RATES, check_f_hat, check_fraction, check_positive, check_stribeck
 from .steady import steady_state_force
 
-#: Grid points used to bracket the smallest root of the self-consistent equation.
+#: Grid points used to bracket the smallest root when ẋ·Fss(ẋ) may turn back.
 _SELF_BRACKET_POINTS = 48
 _SELF_BISECTIONS = 40
+#: Safeguarded Newton steps where ẋ·Fss(ẋ) is strictly increasing (converges in ~6).
+_SELF_NEWTON_STEPS = 30
 
 
 def level(F_hat, Fc, Fs):
@@ -29,11 +31,31 @@ def level(F_hat, Fc, Fs):
     return {"Fc": Fc, "Fs": Fs, "avg": Fc + (Fs - Fc) / 2}[F_hat]
 
 
+def _work_and_slope(v, Fc, Fs, V, delta, sigma):
+    """``h(v) = v·Fss(v)`` and ``h'(v)`` for ``v > 0`` (parameters already checked)."""
+    y = np.power(v / V, delta)
+    decay = (Fs - Fc) * np.exp(-y)
+    g = Fc + decay
+    return v * g + sigma * v * v, g - decay * delta * y + 2 * sigma * v
+
+
+def _work_is_increasing(Fc, Fs, delta, sigma):
+    """Whether ``h(v) = v·Fss(v)`` is strictly increasing for ``v > 0``.
+
+    ``h' = Fc + (Fs − Fc)·e^(−y)·(1 − δ·y) + 2σv`` with ``y = (v/V)^δ``. For ``δ < 0`` every
+    term is positive; for ``δ > 0`` the minimum of ``e^(−y)·(1 − δy)`` is
+    ``−δ·e^(−1−1/δ)`` (at ``y = 1 + 1/δ``), so ``Fc > (Fs − Fc)·δ·e^(−1−1/δ)`` suffices.
+    """
+    return delta < 0 or Fc > (Fs - Fc) * delta * np.exp(-1.0 - 1.0 / delta)
+
+
 def _self_consistent_velocity(c, Fc, Fs, V, delta, sigma):
     """Smallest positive root ẋ of ``ẋ·Fss(ẋ) = c`` for each ``c > 0`` (vectorised).
 
     ``ẋ·Fss(ẋ)`` lies between ``min(Fc, Fs)·ẋ`` and ``max(Fc, Fs)·ẋ + σ·ẋ²``, which brackets
-    every root; a grid over the bracket finds the first sign change, bisection refines it.
+    every root. Where ``ẋ·Fss(ẋ)`` is strictly increasing (:func:`_work_is_increasing`,
+    the usual case) the root is unique and Newton steps kept inside the bracket find it;
+    otherwise a grid over the bracket finds the first sign change and bisection refines it.
     """
     c = np.asanyarray(c, dtype=float)
     g_lo, g_hi = min(Fc, Fs), max(Fc, Fs)
@@ -42,20 +64,43 @@ def _self_consistent_velocity(c, Fc, Fs, V, delta, sigma):
     else:
         lo = c / g_hi
     hi = c / g_lo
+    if _work_is_increasing(Fc, Fs, delta, sigma):
+        return _bracketed_newton(c, lo, hi, Fc, Fs, V, delta, sigma)
     grid = np.linspace(0.0, 1.0, _SELF_BRACKET_POINTS)
     v = lo[..., None] + (hi - lo)[..., None] * grid
-    excess = v * steady_state_force(v, Fc, Fs, V, delta, sigma) - c[..., None]
-    # first grid point at or above the target (the last one always is)
+    excess = _work_and_slope(np.maximum(v, 1e-300), Fc, Fs, V, delta, sigma)[0] - c[..., None]
+    # first grid point at or above the target; the bracket's top is, up to round-off
+    excess[..., -1] = np.maximum(excess[..., -1], 0.0)
     first = np.argmax(excess >= 0, axis=-1)
     first = np.maximum(first, 1)
     a = np.take_along_axis(v, (first - 1)[..., None], axis=-1)[..., 0]
     b = np.take_along_axis(v, first[..., None], axis=-1)[..., 0]
     for _ in range(_SELF_BISECTIONS):
         mid = 0.5 * (a + b)
-        above = mid * steady_state_force(mid, Fc, Fs, V, delta, sigma) >= c
+        above = _work_and_slope(mid, Fc, Fs, V, delta, sigma)[0] >= c
         b = np.where(above, mid, b)
         a = np.where(above, a, mid)
     return 0.5 * (a + b)
+
+
+def _bracketed_newton(c, lo, hi, Fc, Fs, V, delta, sigma):
+    """Root of an increasing ``h(v) − c`` in ``[lo, hi]``: Newton, bisecting when a step
+    would leave the bracket, which shrinks every step."""
+    lo, hi = lo.copy(), hi.copy()
+    v = 0.5 * (lo + hi)
+    for _ in range(_SELF_NEWTON_STEPS):
+        h, slope = _work_and_slope(v, Fc, Fs, V, delta, sigma)
+        above = h >= c
+        hi = np.where(above, v, hi)
+        lo = np.where(above, lo, v)
+        step = v - (h - c) / slope
+        # closed bounds: a converged v sits on the bracket's edge and steps onto itself
+        inside = (step >= lo) & (step <= hi)
+        new = np.where(inside, step, 0.5 * (lo + hi))
+        if np.all(np.abs(new - v) <= 1e-14 * v):
+            return new
+        v = new
+    return v
 
 
 def presliding_velocity(z, k, Fc, Fs, V, delta, s=1.0, sigma=0.0, F_hat="avg"):
