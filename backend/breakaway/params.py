@@ -10,10 +10,11 @@ import math
 from typing import Mapping
 
 #: Default parameters: the note's Fig. 5 setting, ``Fs = 1.5 Fc``, ``σ = 0``, ``s = 1``.
-#: ``V = 20 m/s`` and ``δ = 1`` put the quasi-static break-away velocity of E12
-#: (``ẋ* ≈ 19.5·k/F̂`` for ``z* = 0.95``, ``s = 1``) well below ``V`` at ``k = 0.01``
-#: (``F_ba ≈ Fs``) and far above it at ``k = 30`` (``F_ba ≈ Fc``), with the Fc, Fs and
-#: avg curves apart in between, as in the note's Fig. 5.
+#: ``V = 100 m/s`` and ``δ = 1`` put the quasi-static break-away velocity of E12
+#: (``ẋ* ≈ 19.5·k/F̂`` for ``z* = 0.95``, ``s = 1``) far below ``V`` at ``k = 0.01``
+#: (``F_ba ≈ Fs``) and at ~4.7·V at ``k = 30`` (``F_ba`` within 1 % of ``Fc``), so F_ba
+#: falls across the whole Fig. 3 range with the Fc, Fs and avg curves apart in between,
+#: as in the note's Fig. 5. ``m = 1e-4 kg`` is the small mass of MODEL.md §5's example.
 DEFAULTS: dict[str, float | str] = {
     "Fc": 1.0,  # Coulomb level [N]
     "Fs": 1.5,  # Stribeck (stiction) level [N]
