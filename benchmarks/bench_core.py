@@ -256,7 +256,7 @@ def bench_sweep(quick):
     print(f"   solve_ivp RK45 + events, rtol {rtol:g}: {t_scipy * 1e3:7.0f} ms (one run) "
           f"-> {t_scipy / t_run:.0f}x slower; max rel. error {err_sp.max():.1e} "
           f"(k >= 2.01: {err_sp[1:].max():.1e}); reversals {sp_rev[:3]} vs "
-          f"{list(r.reversals[:3])}")
+          f"{[int(n) for n in r.reversals[:3]]}")
     return {"sweep_ms": t_run * 1e3, "sweep_err": err.max(), "sweep_loose_ms": t_loose * 1e3,
             "sweep_loose_err": err_loose.max(), "scipy_ms": t_scipy * 1e3,
             "band": (min(band), max(band))}
@@ -371,7 +371,7 @@ def table():
         tr = dynamics.simulate_trajectory(k, **PRESET)
         print(f"| {k:.2f} | {e13['Fc'][j]:.4f} | {e13['Fs'][j]:.4f} | {e13['avg'][j]:.4f} | "
               f"{e13['self'][j]:.4f} | {r.u_ba[j]:.4f} | {r.F_ba[j]:.4f} | {r.reversals[j]} | "
-              f"{tr.v[-1]:.1f} | {v_e12[j]:.1f} |")
+              f"{tr.v[-1]:.2f} | {v_e12[j]:.2f} |")
 
 
 def main(argv=None):
