@@ -70,6 +70,16 @@ def test_openapi_and_docs(client):
     scripts = re.findall(r"<script\b([^>]*)>(.*?)</script>", docs.text, flags=re.S)
     assert scripts and all("src=" in attrs and body.strip() == "" for attrs, body in scripts)
     assert client.get("/docs/init.js").status_code == 200
+    # offline: every script and stylesheet of the docs page is served by this app
+    assets = re.findall(r'(?:src|href)="([^"]+\.(?:js|css))"', docs.text)
+    assert sorted(assets) == ["/docs/init.js", "/vendor/swagger-ui/swagger-ui-bundle.js",
+                              "/vendor/swagger-ui/swagger-ui.css"]
+    for asset in assets:
+        response = client.get(asset)
+        assert response.status_code == 200 and len(response.content) > 1000 or asset.endswith("init.js")
+    assert "cdn" not in docs.text.lower()
+    assert "cdn" not in docs.headers["content-security-policy"]
+    assert client.get("/vendor/swagger-ui/index.html").status_code == 404
 
 
 @pytest.mark.parametrize(("method", "path", "body"), [

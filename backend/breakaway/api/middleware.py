@@ -14,18 +14,12 @@ from .errors import error_body
 
 log = logging.getLogger("breakaway.api")
 
-#: The explorer's policy: scripts only from this origin (no inline script, no eval);
-#: Plotly sets inline styles and exports PNG through data:/blob: URLs.
+#: The policy of every page, the explorer and the API docs alike: scripts only from this
+#: origin (no inline script, no eval); Plotly and Swagger UI set inline styles, and
+#: Plotly exports PNG through data:/blob: URLs.
 CSP = ("default-src 'self'; script-src 'self'; style-src 'self' 'unsafe-inline'; "
        "img-src 'self' data: blob:; font-src 'self' data:; connect-src 'self'; "
        "object-src 'none'; base-uri 'none'; frame-ancestors 'none'; form-action 'self'")
-#: The API docs page loads Swagger UI from its CDN (still no inline script).
-DOCS_CSP = ("default-src 'self'; script-src 'self' https://cdn.jsdelivr.net; "
-            "style-src 'self' 'unsafe-inline' https://cdn.jsdelivr.net; "
-            "img-src 'self' data: https://fastapi.tiangolo.com; connect-src 'self'; "
-            "object-src 'none'; base-uri 'none'; frame-ancestors 'none'")
-DOCS_PATHS = ("/docs",)
-
 _COMMON = [
     (b"x-content-type-options", b"nosniff"),
     (b"referrer-policy", b"no-referrer"),
@@ -35,7 +29,6 @@ _COMMON = [
     (b"permissions-policy", b"camera=(), microphone=(), geolocation=()"),
 ]
 _APP_HEADERS = [(b"content-security-policy", CSP.encode())] + _COMMON
-_DOCS_HEADERS = [(b"content-security-policy", DOCS_CSP.encode())] + _COMMON
 
 
 class SecurityHeaders:
@@ -48,11 +41,9 @@ class SecurityHeaders:
         if scope["type"] != "http":
             await self.app(scope, receive, send)
             return
-        extra = _DOCS_HEADERS if scope["path"].startswith(DOCS_PATHS) else _APP_HEADERS
-
         async def send_with_headers(message: Message) -> None:
             if message["type"] == "http.response.start":
-                message["headers"] = list(message.get("headers", [])) + extra
+                message["headers"] = list(message.get("headers", [])) + _APP_HEADERS
             await send(message)
 
         await self.app(scope, receive, send_with_headers)

@@ -1,8 +1,9 @@
 """Files the frontend needs that are not in frontend/: Plotly and the API docs page.
 
-``plotly.min.js`` comes from the installed plotly package, so the explorer works with
-no network. The docs page loads Swagger UI from its CDN through an external init script
-(the CSP allows no inline script).
+``plotly.min.js`` comes from the installed plotly package and Swagger UI (5.x, which
+reads FastAPI's OpenAPI 3.1) from the installed fastapi-offline package, so the explorer
+and the API docs work with no network. The docs page starts Swagger UI from an external init script (the CSP allows no
+inline script).
 """
 
 from __future__ import annotations
@@ -10,13 +11,17 @@ from __future__ import annotations
 from pathlib import Path
 
 import plotly
+import fastapi_offline
 from fastapi import APIRouter
 from fastapi.responses import FileResponse, HTMLResponse, RedirectResponse, Response
 
 router = APIRouter(include_in_schema=False)
 
 PLOTLY_JS = Path(plotly.__file__).resolve().parent / "package_data" / "plotly.min.js"
-_SWAGGER = "https://cdn.jsdelivr.net/npm/swagger-ui-dist@5"
+SWAGGER_DIR = Path(fastapi_offline.__file__).resolve().parent / "static"
+#: The Swagger UI files the docs page loads (served from the installed package).
+SWAGGER_FILES = {"swagger-ui-bundle.js": "text/javascript", "swagger-ui.css": "text/css"}
+_SWAGGER = "/vendor/swagger-ui"
 
 _DOCS_HTML = f"""<!doctype html>
 <html lang="en">
@@ -26,8 +31,8 @@ _DOCS_HTML = f"""<!doctype html>
 <link rel="stylesheet" href="{_SWAGGER}/swagger-ui.css">
 </head>
 <body>
-<div id="swagger-ui"><p>The interactive docs load Swagger UI from {_SWAGGER};
-without network the schema is at <a href="/openapi.json">/openapi.json</a>.</p></div>
+<div id="swagger-ui"><p>Loading the interactive docs; the schema itself is at
+<a href="/openapi.json">/openapi.json</a>.</p></div>
 <script src="{_SWAGGER}/swagger-ui-bundle.js"></script>
 <script src="/docs/init.js"></script>
 </body>
@@ -47,6 +52,15 @@ _DOCS_INIT = """window.ui = SwaggerUIBundle({
 @router.get("/vendor/plotly.min.js")
 def plotly_js() -> FileResponse:
     return FileResponse(PLOTLY_JS, media_type="text/javascript",
+                        headers={"Cache-Control": "public, max-age=86400"})
+
+
+@router.get("/vendor/swagger-ui/{name}")
+def swagger_asset(name: str) -> Response:
+    if name not in SWAGGER_FILES:
+        return Response('{"detail": "not found"}', status_code=404,
+                        media_type="application/json")
+    return FileResponse(SWAGGER_DIR / name, media_type=SWAGGER_FILES[name],
                         headers={"Cache-Control": "public, max-age=86400"})
 
 
