@@ -33,7 +33,7 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
-from .params import LUGRE_1995, _finite, check_fraction, check_positive, check_stribeck
+from .params import DEFAULTS, LUGRE_1995, _finite, check_fraction, check_positive, check_stribeck
 from .presliding import shape_scalar
 
 # ---------------------------------------------------------------------------------
@@ -242,19 +242,32 @@ _EVENT_STOP, _EVENT_GUARD = 0, 1
 
 
 @njit(cache=True)
-def _first_crossing(model, which, t0, y0, f0, y1, f1, h, p, mem, work):
-    """First θ in (0, 1] where event ``which`` fires along the step's interpolant.
+def _stop_rises_between_jumps(model):
+    """Whether the stop function can only rise until the next jump: then one check at
+    the end of the interval replaces the scan. True for the presliding model, whose
+    ``s·|x − x_r|`` grows while ẋ keeps its sign; LuGre's −dF/dt has no such order."""
+    return model == MODEL_PRESLIDING
+
+
+@njit(cache=True)
+def _first_crossing(model, which, t0, y0, f0, y1, f1, h, p, mem, work, theta_max, scan):
+    """First θ in (0, ``theta_max``] where event ``which`` fires along the step's
+    interpolant.
 
     The event value (the guard, or minus the stop function) passing from >= 0 to < 0
-    fires. Returns -1 when there is none; on success the interpolated state at the
-    returned θ (the far side of the crossing) is left in ``work``.
+    fires. With ``scan`` the interpolant is checked at :data:`_SCAN_POINTS` points (an
+    excursion inside the step is not missed); without, only at ``theta_max`` (for an
+    event value that is monotone there). Returns -1 when there is none; on success the
+    interpolated state at the returned θ (the far side of the crossing) is left in
+    ``work``.
     """
     lo = 0.0
     if _event(model, which, t0, y0, p, mem) < 0:
         return -1.0
-    for j in range(1, _SCAN_POINTS + 1):
-        hi = j / _SCAN_POINTS
-        if j == _SCAN_POINTS:
+    points = _SCAN_POINTS if scan else 1
+    for j in range(1, points + 1):
+        hi = theta_max * j / points
+        if hi == 1.0:
             work[:] = y1
         else:
             _hermite(y0, f0, y1, f1, h, hi, work)
@@ -334,9 +347,13 @@ def _integrate(model, y0, mem, p, t_end, rtol, atol, h_max, max_steps, rec_t, re
             h *= max(0.2, 0.9 * norm ** -0.2) if norm == norm else 0.2
             continue
         # accepted step [t, t + h]: the earlier of break-away and reversal wins
-        theta_stop = _first_crossing(model, _EVENT_STOP, t, y, k1, ynew, k7, h, p, mem, work)
-        theta_jump = _first_crossing(model, _EVENT_GUARD, t, y, k1, ynew, k7, h, p, mem, ytmp)
-        if theta_stop >= 0 and (theta_jump < 0 or theta_stop <= theta_jump):
+        theta_jump = _first_crossing(model, _EVENT_GUARD, t, y, k1, ynew, k7, h, p, mem, ytmp,
+                                     1.0, True)
+        # only a break-away before the reversal counts
+        theta_end = theta_jump if theta_jump >= 0 else 1.0
+        theta_stop = _first_crossing(model, _EVENT_STOP, t, y, k1, ynew, k7, h, p, mem, work,
+                                     theta_end, not _stop_rises_between_jumps(model))
+        if theta_stop >= 0:
             t_stop = t + theta_stop * h
             y[:] = work
             F = _force(model, t_stop, y, p, mem)
@@ -535,7 +552,7 @@ def _run_one(model, k, p, y0, mem0, t_end, atol, rtol, max_steps, capacity):
                       t if broke else np.nan, F if broke else np.nan, int(jumps))
 
 
-def simulate_breakaway(k, Fc, Fs, V, delta, s=1.0, sigma=0.0, m=1e-3, z_ba=0.95,
+def simulate_breakaway(k, Fc, Fs, V, delta, s=1.0, sigma=0.0, m=DEFAULTS["m"], z_ba=0.95,
                        rtol=DEFAULT_RTOL, max_steps=2_000_000):
     """Break-away of the ramp experiment ``m·ẍ + F = k·t`` (E7) for each rate.
 
@@ -571,7 +588,7 @@ def simulate_breakaway(k, Fc, Fs, V, delta, s=1.0, sigma=0.0, m=1e-3, z_ba=0.95,
     return _run_sweep(PRESLIDING, ks, p, y0, mem0, t_end, atols, rtol, max_steps)
 
 
-def simulate_trajectory(k, Fc, Fs, V, delta, s=1.0, sigma=0.0, m=1e-3, z_ba=0.95,
+def simulate_trajectory(k, Fc, Fs, V, delta, s=1.0, sigma=0.0, m=DEFAULTS["m"], z_ba=0.95,
                         rtol=DEFAULT_RTOL, max_steps=2_000_000, capacity=200_000):
     """One ramp run of (E7) up to break-away, recorded at every step and reversal.
 

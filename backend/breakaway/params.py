@@ -49,7 +49,7 @@ F_HAT_CHOICES = ("Fc", "Fs", "avg", "self")
 PRESETS: dict[str, dict[str, float | str]] = {
     "fig5": {**DEFAULTS},
     "no-stribeck": {**DEFAULTS, "Fs": 1.0},
-    "viscous": {**DEFAULTS, "sigma": 0.01},
+    "viscous": {**DEFAULTS, "sigma": 0.001},
     "strengthening": {**DEFAULTS, "delta": -1.0},
     "sharp-stribeck": {**DEFAULTS, "V": 5.0, "delta": 2.0},
     "lugre-1995": {
@@ -68,7 +68,7 @@ PRESETS: dict[str, dict[str, float | str]] = {
 PRESET_DESCRIPTIONS: dict[str, str] = {
     "fig5": "The note's Fig. 5: Fs = 1.5 Fc, σ = 0, s = 1.",
     "no-stribeck": "Fs = Fc: no velocity weakening, break-away is Fc·f(z*) for every k.",
-    "viscous": "Fig. 5 with viscous friction σ = 0.01 N·s/m: F_ba rises again at high k.",
+    "viscous": "Fig. 5 with viscous friction σ = 0.001 N·s/m: F_ba dips, then rises again at high k.",
     "strengthening": "δ < 0: velocity-strengthening curve, F_ba rises from Fc towards Fs.",
     "sharp-stribeck": "Narrow Stribeck dip (V = 5, δ = 2): a steep fall of F_ba.",
     "lugre-1995": "The steady-state curve of the LuGre 1995 paper (vs = 1 mm/s, δ = 2).",
