@@ -31,8 +31,10 @@ RUN pip install --no-deps . \
  && mkdir -p "$NUMBA_CACHE_DIR" && chown breakaway "$NUMBA_CACHE_DIR"
 
 USER breakaway
-# Compile the numba kernels once now (~10 s) instead of on the first request.
-RUN python -c "from breakaway.frame import explore_frame; from breakaway.dynamics import simulate_breakaway, simulate_lugre_breakaway; explore_frame(); simulate_breakaway([1.0], 1.0, 1.5, 100.0, 1.0); simulate_lugre_breakaway([1.0])"
+# Compile the numba kernels once now (~15 s) instead of on the first request or fit:
+# the explorer's, the ramp simulation's, and the identification's (play, lag, E6').
+RUN python -c "from breakaway.frame import explore_frame; from breakaway.dynamics import simulate_breakaway, simulate_lugre_breakaway; explore_frame(); simulate_breakaway([1.0], 1.0, 1.5, 100.0, 1.0); simulate_lugre_breakaway([1.0])" \
+ && python -c "from breakaway.identify import identify; from breakaway.identify.synthetic import make_dataset; identify(make_dataset('timeseries', ('backlash', 'lag'), n=2000)[0])"
 
 EXPOSE 8000
 HEALTHCHECK --interval=30s --timeout=5s --start-period=30s --retries=3 \
