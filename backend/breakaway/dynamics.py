@@ -290,6 +290,18 @@ def _first_crossing(model, which, t0, y0, f0, y1, f1, h, p, mem, work, theta_max
 
 
 @njit(cache=True)
+def _record(model, rec_t, rec_y, rec_F, n_rec, t, y, p, mem):
+    """Store one sample while the record arrays have room (the force is evaluated only
+    then: a sweep records nothing); returns the new count."""
+    if n_rec < rec_t.size:
+        rec_t[n_rec] = t
+        rec_y[n_rec, :] = y
+        rec_F[n_rec] = _force(model, t, y, p, mem)
+        n_rec += 1
+    return n_rec
+
+
+@njit(cache=True)
 def _integrate(model, y0, mem, p, t_end, rtol, atol, h_max, max_steps, rec_t, rec_y, rec_F):
     """Integrate from t = 0 until ``stop`` fires, ``t_end`` or ``max_steps``.
 
@@ -300,18 +312,13 @@ def _integrate(model, y0, mem, p, t_end, rtol, atol, h_max, max_steps, rec_t, re
     y = y0
     k1 = np.empty(n); k2 = np.empty(n); k3 = np.empty(n); k4 = np.empty(n)
     k5 = np.empty(n); k6 = np.empty(n); k7 = np.empty(n)
-    ytmp = np.empty(n); ynew = np.empty(n); err = np.empty(n); work = np.empty(n)
+    ytmp = np.empty(n); ynew = np.empty(n); work = np.empty(n)
     t = 0.0
     h = min(h_max, t_end * 1e-6)
     _rhs(model, t, y, p, mem, k1)
     n_rec = 0
     n_jumps = 0
-    cap = rec_t.size
-    if cap > 0:
-        rec_t[0] = t
-        rec_y[0, :] = y
-        rec_F[0] = _force(model, t, y, p, mem)
-        n_rec = 1
+    n_rec = _record(model, rec_t, rec_y, rec_F, n_rec, t, y, p, mem)
     for _ in range(max_steps):
         if t >= t_end:
             return STATUS_TIMEOUT, t, _force(model, t, y, p, mem), n_rec, n_jumps
@@ -357,20 +364,12 @@ def _integrate(model, y0, mem, p, t_end, rtol, atol, h_max, max_steps, rec_t, re
             t_stop = t + theta_stop * h
             y[:] = work
             F = _force(model, t_stop, y, p, mem)
-            if n_rec < cap:
-                rec_t[n_rec] = t_stop
-                rec_y[n_rec, :] = y
-                rec_F[n_rec] = F
-                n_rec += 1
+            n_rec = _record(model, rec_t, rec_y, rec_F, n_rec, t_stop, y, p, mem)
             return STATUS_BREAKAWAY, t_stop, F, n_rec, n_jumps
         if theta_jump >= 0:
             t = t + theta_jump * h
             y[:] = ytmp
-            if n_rec < cap:
-                rec_t[n_rec] = t
-                rec_y[n_rec, :] = y
-                rec_F[n_rec] = _force(model, t, y, p, mem)
-                n_rec += 1
+            n_rec = _record(model, rec_t, rec_y, rec_F, n_rec, t, y, p, mem)
             _jump(model, t, y, p, mem)
             n_jumps += 1
             _rhs(model, t, y, p, mem, k1)
@@ -380,11 +379,7 @@ def _integrate(model, y0, mem, p, t_end, rtol, atol, h_max, max_steps, rec_t, re
         t += h
         y[:] = ynew
         k1[:] = k7
-        if n_rec < cap:
-            rec_t[n_rec] = t
-            rec_y[n_rec, :] = y
-            rec_F[n_rec] = _force(model, t, y, p, mem)
-            n_rec += 1
+        n_rec = _record(model, rec_t, rec_y, rec_F, n_rec, t, y, p, mem)
         h *= min(5.0, 0.9 * max(norm, 1e-10) ** -0.2)
     return STATUS_STEP_LIMIT, t, _force(model, t, y, p, mem), n_rec, n_jumps
 
