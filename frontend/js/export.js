@@ -21,7 +21,8 @@ export function tracesToCsv(traces, axes) {
   return `${lines.join("\n")}\n`;
 }
 
-function download(filename, blob) {
+/** Save `blob` as `filename` through a temporary link. */
+export function download(filename, blob) {
   const url = URL.createObjectURL(blob);
   const link = document.createElement("a");
   link.href = url;

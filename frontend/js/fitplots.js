@@ -1,0 +1,187 @@
+// Pure functions from a finished fit job (its `series` and `report`) to fresh Plotly
+// figures {data, layout} for the data panel, and the number formats of its tables.
+// Nothing here touches the DOM; datapanel.js hands the figures to Plotly.react.
+
+/** Axis title of each column a series can hold. */
+export const AXIS_TITLES = {
+  t: "t [s]",
+  x: "x [m]",
+  v: "v [m/s]",
+  a: "a [m/s²]",
+  k: "k [N/s]",
+  direction: "direction [±1]",
+  dwell: "dwell [s]",
+};
+
+/** How each report parameter is shown: symbol and unit. */
+export const PARAM_LABELS = {
+  Fc: "Fc [N]",
+  Fs: "Fs [N]",
+  V: "V [m/s]",
+  delta: "δ",
+  s: "s [1/m]",
+  sigma: "σ [N·s/m]",
+  Fc_neg: "Fc⁻ [N]",
+  Fs_neg: "Fs⁻ [N]",
+  F_offset: "F0 [N]",
+  alpha: "α [1/s]",
+  m_e: "m_e [kg]",
+  A: "A [N]",
+  wavelength: "λ [m]",
+  phase: "φ [rad]",
+  tau: "τ [s]",
+  play: "b [m]",
+  zeta: "ζ",
+  tau_d: "τ_d [s]",
+};
+
+const COLORS = {
+  measured: "#8a9099",
+  base: "#d62728",
+  final: "#1f4e99",
+  before: "#c9ccd1",
+  after: "#1f4e99",
+};
+
+/**
+ * A number to `digits` significant digits, trailing zeros kept (15.00, 0.04427, 2961);
+ * exponent form below 1e-3 and from 1e6 on (2.6e-4).
+ */
+export function formatNumber(value, digits = 4) {
+  if (value === null || value === undefined) return "–";
+  if (!Number.isFinite(value)) return String(value);
+  if (value === 0) return "0";
+  const magnitude = Math.abs(value);
+  if (magnitude < 1e-3 || magnitude >= 1e6) {
+    const [mantissa, exponent] = value.toExponential(digits - 1).split("e");
+    return `${mantissa}e${Number(exponent)}`;
+  }
+  const decimals = Math.max(0, digits - 1 - Math.floor(Math.log10(magnitude)));
+  return value.toFixed(decimals);
+}
+
+/** Label of a report parameter: its symbol and unit, and the report key when it differs. */
+export function paramLabel(name) {
+  const label = PARAM_LABELS[name];
+  if (!label) return name;
+  return label === name || label.startsWith(`${name} `) ? label : `${label} (${name})`;
+}
+
+/** "value ± stderr", or "value (± not determined)" when the data do not fix it. */
+export function formatWithError(value, stderr) {
+  const shown = formatNumber(value, 4);
+  if (stderr === null || stderr === undefined || !Number.isFinite(stderr)) {
+    return `${shown} ± not determined`;
+  }
+  return `${shown} ± ${formatNumber(stderr, 2)}`;
+}
+
+function forceTitle(kind) {
+  return kind === "breakaway" ? "F_ba [N]" : "F [N]";
+}
+
+function layout(revision, xTitle, yTitle, extra = {}) {
+  return {
+    uirevision: revision, // a new fit resets the zoom; redraws of the same fit keep it
+    margin: { l: 60, r: 12, t: 8, b: 44 },
+    font: { size: 11 },
+    hovermode: "closest",
+    showlegend: true,
+    legend: { x: 1, xanchor: "right", y: 1, bgcolor: "rgba(255,255,255,0.8)" },
+    xaxis: { title: { text: xTitle, standoff: 4 }, zeroline: false, exponentformat: "power" },
+    yaxis: { title: { text: yTitle, standoff: 4 }, zeroline: true, exponentformat: "power" },
+    ...extra,
+  };
+}
+
+function column(series, name) {
+  return Array.from(series.columns[name] ?? []);
+}
+
+/**
+ * Measured force with the base and the final model against the main axis (t for a
+ * timeseries, v for steady data, k for break-away data). A timeseries is drawn as
+ * lines (its rows follow t); steady and break-away data as points.
+ */
+export function modelFigure(series, kind, revision) {
+  const x = column(series, series.axis);
+  const dense = kind === "timeseries";
+  const models = kind === "steady" ? "lines" : (dense ? "lines" : "markers");
+  const data = [
+    {
+      type: "scatter", mode: dense ? "lines" : "markers", name: "measured",
+      x, y: column(series, "measured"),
+      line: { color: COLORS.measured, width: 1 },
+      marker: { color: COLORS.measured, size: 5 },
+    },
+    {
+      type: "scatter", mode: models, name: "base model",
+      x: x.slice(), y: column(series, "base"),
+      line: { color: COLORS.base, width: 1.4, dash: "dash" },
+      marker: { color: COLORS.base, size: 6, symbol: "circle-open" },
+    },
+    {
+      type: "scatter", mode: models, name: "final model",
+      x: x.slice(), y: column(series, "final"),
+      line: { color: COLORS.final, width: 1.6 },
+      marker: { color: COLORS.final, size: 6, symbol: "x-thin-open" },
+    },
+  ];
+  return { data, layout: layout(revision, AXIS_TITLES[series.axis] ?? series.axis, forceTitle(kind)) };
+}
+
+function residualTraces(series, x, dense) {
+  return [
+    {
+      type: "scatter", mode: dense ? "lines" : "markers", name: "before (base model)",
+      x, y: column(series, "residual_before"),
+      line: { color: COLORS.before, width: 1 },
+      marker: { color: COLORS.before, size: 4 },
+    },
+    {
+      type: "scatter", mode: dense ? "lines" : "markers", name: "after (final model)",
+      x: x.slice(), y: column(series, "residual_after"),
+      line: { color: COLORS.after, width: 1 },
+      marker: { color: COLORS.after, size: 4 },
+    },
+  ];
+}
+
+/** Residual (measured − model) before and after against the main axis. */
+export function residualFigure(series, kind, revision) {
+  const x = column(series, series.axis);
+  return {
+    data: residualTraces(series, x, kind === "timeseries"),
+    layout: layout(revision, AXIS_TITLES[series.axis] ?? series.axis, "residual [N]"),
+  };
+}
+
+/** Residual before and after against the regressor that showed `effect`'s signature. */
+export function effectFigure(series, kind, effect, revision) {
+  const regressor = series.effect_regressor[effect];
+  const x = column(series, regressor);
+  const figure = {
+    data: residualTraces(series, x, false),
+    layout: layout(revision, AXIS_TITLES[regressor] ?? regressor, "residual [N]"),
+  };
+  // dwell acts through ln(1 + dwell/τ_d): its signature reads best on a log axis
+  if (regressor === "dwell" && x.length && x.every((value) => value > 0)) {
+    figure.layout.xaxis.type = "log";
+  }
+  return figure;
+}
+
+/** Every figure of one finished fit: {model, residual, effects: [{effect, regressor, figure}]}. */
+export function fitFigures(job) {
+  const { series, report } = job;
+  const kind = report.kind;
+  return {
+    model: modelFigure(series, kind, job.id),
+    residual: residualFigure(series, kind, job.id),
+    effects: report.effects.filter((effect) => effect in series.effect_regressor).map((effect) => ({
+      effect,
+      regressor: series.effect_regressor[effect],
+      figure: effectFigure(series, kind, effect, job.id),
+    })),
+  };
+}
