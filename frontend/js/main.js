@@ -12,6 +12,7 @@ import { ApiError, getJSON, postJSON } from "./api.js";
 import {
   PARAMS, buildControls, parseNumber, showErrors, sliderToValue, validate, writeControls,
 } from "./controls.js";
+import { fitReady, fitReport, initDataPanel } from "./datapanel.js";
 import { exportCsv, exportPng } from "./export.js";
 import { PLOT_IDS, breakawayFigure, figures } from "./plots.js";
 import {
@@ -372,9 +373,17 @@ function wireTabs() {
   }
 }
 
+/** The data panel's "Use these parameters": fitted values into the state (and the URL). */
+function applyFitted(values) {
+  if (!app.state || !app.defaults) return false;
+  setState({ ...app.state, ...values });
+  return true;
+}
+
 async function init() {
   buildControls(document);
   wireTabs();
+  initDataPanel({ applyParams: applyFitted });
   const response = await getJSON("/api/presets");
   app.defaults = response.defaults;
   app.presets = response.presets;
@@ -404,6 +413,9 @@ window.breakaway = {
   frames: () => app.frames,
   reacts: () => app.reacts,
   lastRedrawMs: () => app.lastRedrawMs,
+  /** Resolves once the data panel runs no fit; the finished fit's report (or null). */
+  fitReady,
+  fitReport,
 };
 
 init().catch((error) => {

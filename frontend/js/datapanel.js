@@ -1,0 +1,549 @@
+// The data panel: upload measured data (file picker, drag and drop, or a bundled
+// sample), fit it as a background job, and show the fit, the residuals, the diagnosis
+// and the error before and after.
+//
+// One fit at a time from the page: starting a new one cancels the old. The job runs in
+// a server thread; the page polls it (every POLL_MS, each poll a fetch that never
+// blocks the explorer) and Cancel sends DELETE. #data-panel carries
+// data-state="idle|running|done|error|cancelled"; window.breakaway.fitReady() resolves
+// once no fit is running.
+
+import { ApiError, getJSON } from "./api.js";
+import { PARAMS, roundSignificant } from "./controls.js";
+import { download } from "./export.js";
+import { fitFigures, formatNumber, formatWithError, paramLabel } from "./fitplots.js";
+
+const POLL_MS = 200;
+const BUSY_RETRY_MS = 400; // 429: the server's fit workers are all taken
+const BUSY_RETRIES = 50;
+const PLOT_CONFIG = {
+  responsive: true,
+  displaylogo: false,
+  modeBarButtonsToRemove: ["select2d", "lasso2d"],
+};
+/** Explorer parameters that "Use these parameters" sets (rounded to this many digits). */
+const DIGITS = 6;
+const SYMBOLS = { Fc: "Fc", Fs: "Fs", V: "V", delta: "δ", s: "s", sigma: "σ" };
+
+const panel = {
+  state: "idle",
+  generation: 0, // each started fit; answers for an older one are dropped
+  job: null, // {id, status, ...} of the current fit
+  controller: null, // aborts the current fit's requests
+  source: null, // {kind: "file", file} | {kind: "sample", name}
+  result: null, // the finished job {id, source, report, series}
+  samples: [],
+  applyParams: null,
+};
+const waiting = [];
+const $ = (id) => document.getElementById(id);
+
+// ---------------------------------------------------------------------------------
+// pure helpers
+// ---------------------------------------------------------------------------------
+
+/**
+ * The explorer values a report gives, and notes for the person: Fc, Fs, V, δ from the
+ * final model (for asymmetric data these are the positive-direction levels), s when the
+ * data determine it, σ when the viscous effect was found (else 0). Values are rounded to
+ * DIGITS significant digits; a value beyond its slider's range is kept (the number box
+ * holds any value; the slider rests at its end) and named in the notes.
+ */
+export function explorerParams(report, specs = PARAMS) {
+  const fitted = report.final.params;
+  const values = {};
+  for (const name of ["Fc", "Fs", "V", "delta"]) {
+    if (Number.isFinite(fitted[name])) values[name] = roundSignificant(fitted[name], DIGITS);
+  }
+  const notes = [];
+  if (report.kind === "timeseries" && Number.isFinite(fitted.s)) {
+    values.s = roundSignificant(fitted.s, DIGITS);
+  } else if (report.kind === "breakaway") {
+    notes.push("s is kept: a break-away fit takes it from the file (it assumes F̂ = avg, z* = 0.95)");
+  } else {
+    notes.push("s is kept: steady data do not determine it");
+  }
+  values.sigma = report.effects.includes("viscous") && Number.isFinite(fitted.sigma)
+    ? roundSignificant(fitted.sigma, DIGITS) : 0;
+  if (values.Fs < values.Fc) values.Fs = values.Fc; // rounding never does this; be safe
+  const outside = [];
+  for (const [name, value] of Object.entries(values)) {
+    const spec = specs.find((s) => s.name === name);
+    if (!spec) continue;
+    const low = spec.scale === "log0" ? 0 : spec.min;
+    if (value < low || value > spec.max) {
+      outside.push(`${SYMBOLS[name]} = ${formatNumber(value, 4)} (slider ${low} … ${spec.max})`);
+    }
+  }
+  if (outside.length) {
+    notes.push(`outside the slider range, kept in the box with the slider at its end: ${outside.join(", ")}`);
+  }
+  const others = Object.keys(fitted).filter((name) => !(name in SYMBOLS));
+  if (others.length) notes.push(`the explorer has no control for ${others.join(", ")}`);
+  return { values, notes };
+}
+
+/** The message of a bad file: the engine's sentence, with line and column if it lacks them. */
+export function dataErrorMessage(error) {
+  const item = error instanceof ApiError && error.detail.length ? error.detail[0] : null;
+  let message = item ? item.msg : error.message;
+  if (item && item.line != null && !message.includes(`line ${item.line}`)) {
+    message += ` (line ${item.line}${item.column ? `, column '${item.column}'` : ""})`;
+  }
+  return message;
+}
+
+// ---------------------------------------------------------------------------------
+// state and status
+// ---------------------------------------------------------------------------------
+
+function setPanelState(state) {
+  panel.state = state;
+  const root = $("data-panel");
+  root.dataset.state = state;
+  $("fit-cancel").disabled = state !== "running";
+  $("fit-start").disabled = !panel.source;
+  if (state !== "running") {
+    const resolve = waiting.splice(0);
+    for (const done of resolve) done();
+  }
+}
+
+function setProgress(fraction, message) {
+  const bar = $("fit-progress");
+  if (fraction === null) bar.removeAttribute("value"); else bar.value = fraction;
+  $("fit-message").textContent = message;
+}
+
+function showError(message) {
+  const box = $("fit-error");
+  box.textContent = message;
+  box.hidden = false;
+}
+
+function hideError() {
+  $("fit-error").hidden = true;
+  $("fit-error").textContent = "";
+}
+
+function sleep(ms) {
+  return new Promise((resolve) => { setTimeout(resolve, ms); });
+}
+
+// ---------------------------------------------------------------------------------
+// requests
+// ---------------------------------------------------------------------------------
+
+async function jsonOrThrow(response) {
+  if (response.ok) return response.json();
+  let detail = [];
+  try {
+    detail = (await response.json()).detail;
+  } catch {
+    // not JSON
+  }
+  if (typeof detail === "string") detail = [{ msg: detail }];
+  throw new ApiError(response.status, detail);
+}
+
+function jobUrl(id) {
+  return `/api/fit/jobs/${encodeURIComponent(id)}`;
+}
+
+function deleteJob(id, keepalive = false) {
+  return fetch(jobUrl(id), { method: "DELETE", keepalive }).catch(() => null);
+}
+
+function isActive(job) {
+  return job && (job.status === "queued" || job.status === "running");
+}
+
+function sourceName(source) {
+  if (source.kind === "file") return source.file.name || "upload.csv";
+  const sample = panel.samples.find((s) => s.name === source.name);
+  return `sample ${sample ? sample.title : source.name}`;
+}
+
+/** The file to upload for the current source (a sample is fetched as text). */
+async function sourceFile(source, signal) {
+  if (source.kind === "file") return source.file;
+  const response = await fetch(`/api/samples/${encodeURIComponent(source.name)}.csv`, { signal });
+  if (!response.ok) throw new Error(`sample ${source.name} could not be loaded (HTTP ${response.status})`);
+  const text = await response.text();
+  return new File([text], `${source.name}.csv`, { type: "text/csv" });
+}
+
+// ---------------------------------------------------------------------------------
+// a fit: submit, poll, finish
+// ---------------------------------------------------------------------------------
+
+async function startFit() {
+  if (!panel.source) return;
+  const previous = panel.job;
+  if (panel.controller) panel.controller.abort();
+  panel.generation += 1;
+  const generation = panel.generation;
+  const controller = new AbortController();
+  panel.controller = controller;
+  panel.job = null;
+  if (isActive(previous)) deleteJob(previous.id); // the old fit stops at its next checkpoint
+  const current = () => generation === panel.generation;
+
+  hideError();
+  clearResults();
+  $("data-source").textContent = `Data: ${sourceName(panel.source)}`;
+  delete $("data-panel").dataset.job;
+  setPanelState("running");
+  setProgress(null, "uploading");
+  try {
+    const file = await sourceFile(panel.source, controller.signal);
+    const form = new FormData();
+    form.append("file", file, file.name || "upload.csv");
+    const kind = $("data-kind").value;
+    if (kind) form.append("kind", kind);
+    let job = null;
+    for (let attempt = 0; !job; attempt += 1) {
+      const response = await fetch("/api/fit/jobs", {
+        method: "POST", body: form, signal: controller.signal,
+      });
+      if (response.status === 429 && attempt < BUSY_RETRIES) {
+        if (!current()) return;
+        setProgress(null, "waiting for a free fit worker");
+        await sleep(BUSY_RETRY_MS);
+        if (!current()) return;
+        continue;
+      }
+      job = await jsonOrThrow(response);
+    }
+    if (!current()) {
+      deleteJob(job.id);
+      return;
+    }
+    panel.job = job;
+    $("data-panel").dataset.job = job.id;
+    await poll(generation, controller);
+  } catch (error) {
+    if (error.name === "AbortError" || !current()) return;
+    showError(error instanceof ApiError && error.status === 422
+      ? `The file could not be used: ${dataErrorMessage(error)}`
+      : `The fit could not run: ${dataErrorMessage(error)}`);
+    setProgress(0, "failed");
+    setPanelState("error");
+  }
+}
+
+async function poll(generation, controller) {
+  const current = () => generation === panel.generation;
+  for (;;) {
+    const job = panel.job;
+    setProgress(job.progress, job.status === "queued" ? "waiting for a worker"
+      : `${job.message} (${Math.round(job.progress * 100)} %)`);
+    if (!isActive(job)) break;
+    await sleep(POLL_MS);
+    if (!current()) return;
+    panel.job = await getJSON(jobUrl(job.id), controller.signal);
+    if (!current()) return;
+  }
+  await finish(panel.job, generation);
+}
+
+async function finish(job, generation) {
+  if (job.status === "done") {
+    setProgress(1, `done in ${formatNumber(job.report.seconds ?? 0, 3)} s`);
+    panel.result = job;
+    await showResults(job);
+    if (generation !== panel.generation) return;
+    setPanelState("done");
+  } else if (job.status === "cancelled") {
+    setProgress(0, "cancelled");
+    setPanelState("cancelled");
+  } else {
+    showError(`The fit failed: ${job.error ?? "unknown error"}`);
+    setProgress(0, "failed");
+    setPanelState("error");
+  }
+}
+
+function cancelFit() {
+  if (panel.state !== "running") return;
+  if (panel.job && isActive(panel.job)) {
+    // the job stops at its next checkpoint; polling carries on until it says "cancelled"
+    setProgress(panel.job.progress, "cancelling");
+    deleteJob(panel.job.id);
+    return;
+  }
+  // still uploading: abandon the upload
+  if (panel.controller) panel.controller.abort();
+  panel.generation += 1;
+  panel.job = null;
+  setProgress(0, "cancelled");
+  setPanelState("cancelled");
+}
+
+// ---------------------------------------------------------------------------------
+// results
+// ---------------------------------------------------------------------------------
+
+function clearResults() {
+  panel.result = null;
+  const results = $("fit-results");
+  results.hidden = true;
+  for (const div of results.querySelectorAll(".fit-plot")) {
+    if (window.Plotly && div.data) window.Plotly.purge(div);
+  }
+  $("fit-effect-plots").replaceChildren();
+  $("use-note").textContent = "";
+}
+
+function element(tag, attrs = {}, ...children) {
+  const node = document.createElement(tag);
+  for (const [key, value] of Object.entries(attrs)) {
+    if (key === "className") node.className = value;
+    else if (key === "text") node.textContent = value;
+    else node.setAttribute(key, value);
+  }
+  node.append(...children);
+  return node;
+}
+
+function renderSummary(job) {
+  const report = job.report;
+  const headline = $("fit-effects");
+  headline.replaceChildren();
+  if (report.effects.length) {
+    headline.append(`Effect${report.effects.length > 1 ? "s" : ""} found: `);
+    report.effects.forEach((effect, i) => {
+      if (i) headline.append(", ");
+      headline.append(element("strong", { className: "effect-name", "data-effect": effect, text: effect }));
+    });
+  } else if (report.unexplained) {
+    headline.append("No effect of the library explains what the base model misses.");
+  } else {
+    headline.append("No effect missing: the base model explains the data down to the noise floor.");
+  }
+  const verdict = [];
+  verdict.push(report.residual_white
+    ? "The final residual is white: indistinguishable from measurement noise."
+    : "The final residual is not white.");
+  if (report.unexplained) verdict.push("Structure remains that no candidate explains.");
+  const verdictBox = $("fit-verdict");
+  verdictBox.textContent = verdict.join(" ");
+  verdictBox.classList.toggle("unexplained", Boolean(report.unexplained));
+  $("fit-meta").textContent = `${job.source}: ${report.kind}, ${report.n} rows`
+    + (job.series.stride > 1 ? ` (the plots show 1 row in ${job.series.stride})` : "")
+    + (report.seconds != null ? `, fitted in ${formatNumber(report.seconds, 3)} s` : "");
+}
+
+function renderErrorTable(report) {
+  const cell = (metric, value) => element("td", { "data-metric": metric, text: formatNumber(value, 4) });
+  const body = $("fit-error-table").tBodies[0];
+  body.replaceChildren(
+    element("tr", {}, element("th", { scope: "row", text: "fit RMSE [N]" }),
+      cell("error_before", report.error_before), cell("error_after", report.error_after)),
+    element("tr", {}, element("th", { scope: "row", text: "held-out RMSE [N]" }),
+      cell("heldout_before", report.heldout.before), cell("heldout_after", report.heldout.after)),
+    element("tr", {}, element("th", { scope: "row", text: "noise floor [N]" }),
+      element("td", { "data-metric": "noise_floor", colspan: "2", text: formatNumber(report.noise_floor, 4) })),
+  );
+}
+
+function renderParamTable(report) {
+  const base = report.base;
+  const final = report.final;
+  const names = [...new Set([...Object.keys(base.params), ...Object.keys(final.params)])];
+  const body = $("fit-param-table").tBodies[0];
+  body.replaceChildren(...names.map((name) => {
+    const label = element("th", { scope: "row", text: paramLabel(name) });
+    const shown = (fit) => (name in fit.params
+      ? formatWithError(fit.params[name], fit.stderr?.[name]) : "–");
+    return element("tr", { "data-param": name }, label,
+      element("td", { "data-model": "base", text: shown(base) }),
+      element("td", { "data-model": "final", text: shown(final) }));
+  }));
+}
+
+function renderSteps(report) {
+  const list = $("fit-steps");
+  list.replaceChildren();
+  for (const step of report.steps) {
+    // the evidence sentence names the signature and the RMSE and BIC it changed
+    list.append(element("li", { "data-effect": step.effect },
+      element("strong", { className: "effect-name", text: step.effect }),
+      `: ${step.evidence.replace(/\.?$/, ".")}`));
+  }
+  if (!report.steps.length) {
+    list.append(element("li", { text: "No step: no candidate passed the tests (BIC, variance "
+      + "explained above the noise floor, held-out error)." }));
+  }
+  const dropped = report.steps.map((s) => s.effect).filter((e) => !report.effects.includes(e));
+  $("fit-dropped").textContent = dropped.length
+    ? `Dropped again as redundant once later effects were in: ${dropped.join(", ")}.` : "";
+  const candidates = report.candidates ?? {};
+  const body = $("fit-candidates").tBodies[0];
+  body.replaceChildren(...Object.entries(candidates).map(([name, c]) => element("tr", {},
+    element("th", { scope: "row", text: name }),
+    element("td", { text: formatNumber(c.rmse) }),
+    element("td", { text: formatNumber(c.bic, 6) }),
+    element("td", { text: c.heldout == null ? "–" : formatNumber(c.heldout) }))));
+  $("fit-candidates-box").hidden = !Object.keys(candidates).length;
+}
+
+function plotCard(id, title, caption) {
+  return element("figure", { className: "plot-card fit-card" },
+    element("h3", { text: title }),
+    element("div", { className: "fit-plot", id, role: "group", "aria-label": title }),
+    element("figcaption", { text: caption }));
+}
+
+async function showResults(job) {
+  const report = job.report;
+  renderSummary(job);
+  renderErrorTable(report);
+  renderParamTable(report);
+  renderSteps(report);
+  const figures = fitFigures(job);
+  const effectPlots = $("fit-effect-plots");
+  effectPlots.replaceChildren(...figures.effects.map(({ effect, regressor }) => plotCard(
+    `fit-plot-effect-${effect}`, `${effect}: residual against ${regressor}`,
+    `Where ${effect} showed: the residual against ${regressor} before (grey) and after (blue).`)));
+  $("fit-results").hidden = false; // visible before drawing, so the plots take their size
+  await Promise.all([
+    window.Plotly.react($("fit-plot-model"), figures.model.data, figures.model.layout, PLOT_CONFIG),
+    window.Plotly.react($("fit-plot-residual"), figures.residual.data, figures.residual.layout, PLOT_CONFIG),
+    ...figures.effects.map(({ effect, figure }) => window.Plotly.react(
+      $(`fit-plot-effect-${effect}`), figure.data, figure.layout, PLOT_CONFIG)),
+  ]);
+}
+
+function stem(job) {
+  return (job.source || "data").replace(/\.[^.]*$/, "").replace(/[^\w.-]+/g, "_") || "data";
+}
+
+function downloadReport() {
+  const job = panel.result;
+  if (!job) return;
+  const text = `${JSON.stringify(job.report, null, 2)}\n`;
+  download(`${stem(job)}-report.json`, new Blob([text], { type: "application/json" }));
+}
+
+async function downloadResiduals() {
+  const job = panel.result;
+  if (!job) return;
+  try {
+    const response = await fetch(`${jobUrl(job.id)}/residuals.csv`);
+    if (!response.ok) throw new Error(`HTTP ${response.status}: the server no longer holds this fit; fit again`);
+    download(`${stem(job)}-residuals.csv`, new Blob([await response.text()], { type: "text/csv" }));
+  } catch (error) {
+    showError(`The residuals could not be downloaded: ${error.message}`);
+  }
+}
+
+function useParameters() {
+  const job = panel.result;
+  if (!job || !panel.applyParams) return;
+  const { values, notes } = explorerParams(job.report);
+  const applied = panel.applyParams(values);
+  const set = Object.keys(values).map((name) => `${SYMBOLS[name]} = ${values[name]}`);
+  $("use-note").textContent = applied === false
+    ? "The explorer is not ready yet; try again in a moment."
+    : `Set ${set.join(", ")}.${notes.length ? ` Note: ${notes.join("; ")}.` : ""}`;
+}
+
+// ---------------------------------------------------------------------------------
+// wiring
+// ---------------------------------------------------------------------------------
+
+function chooseFile(file) {
+  if (!file) return;
+  panel.source = { kind: "file", file };
+  $("data-sample").value = "";
+  $("sample-description").textContent = "";
+  startFit();
+}
+
+function chooseSample() {
+  const name = $("data-sample").value;
+  const sample = panel.samples.find((s) => s.name === name);
+  $("sample-description").textContent = sample ? sample.description : "";
+  if (sample) {
+    panel.source = { kind: "sample", name };
+    $("data-source").textContent = `Data: sample ${sample.title} — press Fit`;
+  }
+  $("fit-start").disabled = !panel.source;
+}
+
+function wireDropZone() {
+  const zone = $("drop-zone");
+  const hasFiles = (event) => [...(event.dataTransfer?.types ?? [])].includes("Files");
+  zone.addEventListener("dragenter", (event) => {
+    if (!hasFiles(event)) return;
+    event.preventDefault();
+    zone.classList.add("dragging");
+  });
+  zone.addEventListener("dragover", (event) => {
+    if (!hasFiles(event)) return;
+    event.preventDefault();
+    event.dataTransfer.dropEffect = "copy";
+    zone.classList.add("dragging");
+  });
+  zone.addEventListener("dragleave", (event) => {
+    if (!zone.contains(event.relatedTarget)) zone.classList.remove("dragging");
+  });
+  zone.addEventListener("drop", (event) => {
+    event.preventDefault();
+    zone.classList.remove("dragging");
+    chooseFile(event.dataTransfer.files[0]);
+  });
+  // a file dropped beside the zone must not make the browser leave the page
+  for (const type of ["dragover", "drop"]) {
+    window.addEventListener(type, (event) => {
+      if (hasFiles(event) && !zone.contains(event.target)) event.preventDefault();
+    });
+  }
+}
+
+async function loadSamples() {
+  try {
+    panel.samples = await getJSON("/api/samples");
+  } catch {
+    panel.samples = [];
+  }
+  const select = $("data-sample");
+  for (const sample of panel.samples) {
+    select.append(element("option", { value: sample.name, text: sample.title, title: sample.description }));
+  }
+}
+
+/**
+ * Wire the panel. `applyParams(values)` sets explorer parameters (a partial state) and
+ * returns false when the explorer cannot take them yet.
+ */
+export function initDataPanel({ applyParams }) {
+  panel.applyParams = applyParams;
+  $("data-file").addEventListener("change", (event) => chooseFile(event.target.files[0]));
+  $("data-sample").addEventListener("change", chooseSample);
+  $("fit-start").addEventListener("click", startFit);
+  $("fit-cancel").addEventListener("click", cancelFit);
+  $("use-params").addEventListener("click", useParameters);
+  $("download-report").addEventListener("click", downloadReport);
+  $("download-residuals").addEventListener("click", downloadResiduals);
+  wireDropZone();
+  // leaving the page mid-fit frees the server's worker
+  window.addEventListener("pagehide", () => {
+    if (isActive(panel.job)) deleteJob(panel.job.id, true);
+  });
+  setPanelState("idle");
+  return loadSamples();
+}
+
+/** Resolves once no fit is running (done, error, cancelled or idle). */
+export function fitReady() {
+  return new Promise((resolve) => {
+    if (panel.state === "running") waiting.push(resolve); else resolve();
+  });
+}
+
+/** The finished fit's report (a copy), or null. */
+export function fitReport() {
+  return panel.result ? JSON.parse(JSON.stringify(panel.result.report)) : null;
+}
