@@ -9,6 +9,16 @@ from breakaway.presliding import hysteresis_loop
 from breakaway.quasistatic import breakaway_force, presliding_velocity
 from breakaway.steady import steady_state_force
 
+def wait_ready(page, signal: str = "ready") -> None:
+    """Wait until the page's ``window.breakaway.<signal>()`` promise resolves.
+
+    The hook is set when main.js has run; waiting for it first keeps a test from racing
+    the module's start (``goto`` returning before the hook exists).
+    """
+    page.wait_for_function("() => window.breakaway !== undefined")
+    page.evaluate(f"window.breakaway.{signal}()")
+
+
 #: Plotted values carry float32 precision or 7 significant digits (relative error <= 5e-7).
 RTOL = 1e-6
 

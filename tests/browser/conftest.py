@@ -17,6 +17,8 @@ from pathlib import Path
 
 import pytest
 
+from browser_model import wait_ready
+
 BROWSER_ARGS = ["--no-sandbox", "--disable-gpu", "--disable-background-networking",
                 "--disable-component-update", "--disable-sync"]
 DESKTOP = {"width": 1280, "height": 800}
@@ -101,10 +103,10 @@ class Explorer:
         return self
 
     def ready(self) -> None:
-        self.page.evaluate("window.breakaway.ready()")
+        wait_ready(self.page)
 
     def sim_ready(self) -> None:
-        self.page.evaluate("window.breakaway.simReady()")
+        wait_ready(self.page, "simReady")
 
     def traces(self, plot: str) -> dict[str, dict]:
         """The plotted traces of ``plot`` by name: {name: {x, y, customdata}}."""

@@ -8,7 +8,7 @@ import pytest
 
 from breakaway.params import DEFAULTS, PRESET_DESCRIPTIONS, PRESETS
 
-from browser_model import assert_plots_match_model
+from browser_model import assert_plots_match_model, wait_ready
 
 pytestmark = pytest.mark.browser
 
@@ -81,7 +81,7 @@ def test_url_round_trip_restores_the_view(explorer, browser, server_url):
     try:
         other = context.new_page()
         other.goto(page.url)
-        other.evaluate("window.breakaway.ready()")
+        wait_ready(other)
         assert other.evaluate("window.breakaway.state()") == state
         assert other.get_by_label("V [m/s]", exact=True).input_value() == "12.5"
         assert other.get_by_label("F̂ (F_hat)", exact=True).input_value() == "Fs"
