@@ -8,12 +8,10 @@ an effect outside the library must not be passed off as one inside it.
 
 from __future__ import annotations
 
-import numpy as np
 import pytest
-from scipy.signal import lfilter
 
 from breakaway.identify import EFFECTS, diagnose, report
-from breakaway.identify.synthetic import NOISE, make_dataset, with_force
+from breakaway.identify.synthetic import NOISE, make_dataset, make_filtered_channel
 
 #: Shorter timeseries than the 20,000-sample default keep the suite quick.
 N_TIMESERIES = 10_000
@@ -80,21 +78,9 @@ def test_two_effects_are_both_found(kind, effects):
     assert [s["effect"] for s in result["steps"]] == result["effects"]
 
 
-def _filtered_force(seed, delay_samples=15, time_constant=0.02):
-    """Base-model data seen through a delayed, low-pass filtered force channel."""
-    data, _ = make_dataset("timeseries", (), seed=seed, noise=0.0, n=N_TIMESERIES)
-    F = data.columns["F"]
-    dt = data.columns["t"][1] - data.columns["t"][0]
-    delayed = np.concatenate([np.full(delay_samples, F[0]), F[:-delay_samples]])
-    a = np.exp(-dt / time_constant)
-    filtered = lfilter([1 - a], [1, -a], delayed, zi=[a * delayed[0]])[0]
-    noise = NOISE["timeseries"] * np.random.default_rng(seed).standard_normal(F.size)
-    return with_force(data, filtered + noise)
-
-
 @pytest.mark.parametrize("seed", [6, 7])
 def test_effect_outside_the_library_is_not_claimed(seed):
-    result = report(diagnose(_filtered_force(seed)))
+    result = report(diagnose(make_filtered_channel(seed=seed, n=N_TIMESERIES)))
     assert result["unexplained"] is True or result["residual_white"] is False
     assert result["effects"] == []
 

@@ -361,8 +361,14 @@ def _profiled_fit(data, effects, name, starts, rows):
         if best is None or fit.bic < best.bic:
             best = fit
     free = fit_model(data, effects, starts=[best.params], rows=rows, screen=1)
-    return free if free.bic <= best.bic else fit_model(
-        data, effects, starts=[best.params], rows=rows, screen=1, max_nfev=1)
+    return free if free.bic <= best.bic else _evaluated_at(data, effects, best.params, rows)
+
+
+def _evaluated_at(data, effects, params, rows):
+    """The model with every parameter free, evaluated at ``params`` without moving them
+    (least_squares stops after its first evaluation), so each parameter gets its
+    standard error from the Jacobian there."""
+    return fit_model(data, effects, starts=[params], rows=rows, screen=1, max_nfev=1)
 
 
 __all__ = ["FitError", "FitResult", "base_starts", "best_base_starts", "bic", "effect_starts",

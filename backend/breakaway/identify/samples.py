@@ -6,10 +6,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from importlib import resources
 
-import numpy as np
-from scipy.signal import lfilter
-
-from .synthetic import NOISE, make_dataset, to_csv, with_force
+from .synthetic import make_dataset, make_filtered_channel, to_csv
 
 #: Rows of the synthetic timeseries samples (a quick fit in the browser).
 _SAMPLE_ROWS = 8000
@@ -36,13 +33,8 @@ def _mystery(kind, effects, seed):
 
 
 def _outside_library():
-    data, _ = make_dataset("timeseries", (), seed=31, noise=0.0, n=_SAMPLE_ROWS)
-    F = data.columns["F"]
-    delayed = np.concatenate([np.full(15, F[0]), F[:-15]])
-    a = np.exp(-1e-3 / 0.02)
-    filtered = lfilter([1 - a], [1, -a], delayed, zi=[a * delayed[0]])[0]
-    noisy = filtered + NOISE["timeseries"] * np.random.default_rng(31).standard_normal(F.size)
-    return to_csv(with_force(data, noisy), comment="synthetic sample (seeded)")
+    data = make_filtered_channel(seed=31, n=_SAMPLE_ROWS)
+    return to_csv(data, comment="synthetic sample (seeded)")
 
 
 def _damper():

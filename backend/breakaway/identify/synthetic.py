@@ -12,6 +12,7 @@ import io
 import math
 
 import numpy as np
+from scipy.signal import lfilter
 
 from .csvdata import Dataset
 from .models import Problem
@@ -161,6 +162,27 @@ def make_dataset(kind: str, effects=(), seed: int = 0, noise: float | None = Non
         measured = np.abs(measured)
     columns = {**skeleton.columns, column: measured}
     return _dataset(kind, columns, skeleton.meta), truth
+
+
+def make_filtered_channel(seed: int = 0, n: int | None = None, delay: float = 0.015,
+                          time_constant: float = 0.02, noise: float | None = None) -> Dataset:
+    """Base-model timeseries seen through a delayed, low-pass filtered force channel.
+
+    An effect outside the §7 library (a sensor's dynamics): the force is delayed by
+    ``delay`` [s] and passed through a first-order low-pass of ``time_constant`` [s]
+    before the noise is added.
+    """
+    data, _ = make_dataset("timeseries", (), seed=seed, noise=0.0, n=n)
+    F = data.columns["F"]
+    t = data.columns["t"]
+    dt = float(t[1] - t[0])
+    shift = max(int(round(delay / dt)), 1)
+    delayed = np.concatenate([np.full(shift, F[0]), F[:-shift]])
+    a = math.exp(-dt / time_constant)
+    filtered = lfilter([1 - a], [1, -a], delayed, zi=[a * delayed[0]])[0]
+    sigma = NOISE["timeseries"] if noise is None else noise
+    noisy = filtered + sigma * np.random.default_rng(seed).standard_normal(F.size)
+    return with_force(data, noisy)
 
 
 def with_force(dataset: Dataset, force) -> Dataset:
