@@ -17,6 +17,7 @@ class ModelFit(BaseModel):
 class FitStep(ModelFit):
     effect: str
     evidence: str
+    heldout: float | None
 
 
 class HeldOut(BaseModel):

@@ -26,7 +26,7 @@ from threadpoolctl import threadpool_limits
 from .csvdata import Dataset
 from .effects import candidates
 from .fitting import FitResult, best_base_starts, fit_model, fit_with_effect, refit
-from .residuals import is_white, noise_floor, signature, smoothness_statistic
+from .residuals import is_white, noise_floor, signature
 
 #: A BIC drop of 10 is "very strong" evidence (Kass & Raftery 1995).
 MIN_BIC_DROP = 10.0
@@ -199,7 +199,8 @@ def report(diagnosis: Diagnosis) -> dict:
     """The §8 identification report as a JSON-ready dict.
 
     Besides the §8 keys, each model entry carries ``stderr`` (standard errors of its
-    parameters, ``null`` where the data do not determine one), and the report carries
+    parameters, ``null`` where the data do not determine one), each step its held-out
+    error ``heldout``, and the report carries
     ``candidates`` (each effect tried in the last round against the model it would have
     extended: its RMSE and BIC, and its held-out error where it passed the other gates)
     and ``seconds`` (wall time of the diagnosis).
@@ -210,8 +211,8 @@ def report(diagnosis: Diagnosis) -> dict:
         "n": d.data.n,
         "noise_floor": _clean(d.noise),
         "base": _model_entry(d.base),
-        "steps": [{"effect": s.effect, **_model_entry(s.fit), "evidence": s.evidence}
-                  for s in d.steps],
+        "steps": [{"effect": s.effect, **_model_entry(s.fit), "evidence": s.evidence,
+                   "heldout": _clean(s.heldout)} for s in d.steps],
         "effects": d.effects,
         "final": _model_entry(d.final),
         "error_before": _clean(d.base.rmse),

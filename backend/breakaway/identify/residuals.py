@@ -45,10 +45,6 @@ def _groupings(problem: Problem):
     return [fine, coarse]
 
 
-def _groups(problem: Problem):
-    return _groupings(problem)[0]
-
-
 def noise_floor(problem: Problem) -> float:
     """Model-free estimate of the measurement noise std [N].
 
@@ -91,7 +87,7 @@ def smoothness_statistic(residual, problem: Problem) -> tuple[float, float]:
     rows. For white noise the variance of the means is ``var/w``, so the statistic
     ``w·var(means)/var`` is 1 ± ``sqrt(2w/n)``; structure the model misses raises it.
     """
-    parts = [residual[m] for m in _groups(problem)]
+    parts = [residual[m] for m in _groupings(problem)[0]]
     n = sum(p.size for p in parts)
     w = int(np.clip(n // 60, 3, 100))
     means = []
