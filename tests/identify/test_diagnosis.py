@@ -47,6 +47,7 @@ def test_undeclared_effect_is_found(kind, effect):
         assert result["final"]["params"][name] == pytest.approx(truth[name], rel=0.1), name
     step = result["steps"][0]
     assert step["effect"] == effect
+    assert step["heldout"] == pytest.approx(result["heldout"]["after"], rel=1e-12)
     assert "RMSE falls" in step["evidence"]
 
 
