@@ -121,5 +121,7 @@ def test_job_can_be_cancelled(client):
 
 
 def test_unknown_job_is_404(client):
-    assert client.get("/api/fit/jobs/nope").status_code == 404
-    assert client.delete("/api/fit/jobs/nope").status_code == 404
+    for response in (client.get("/api/fit/jobs/nope"), client.delete("/api/fit/jobs/nope"),
+                     client.get("/api/fit/jobs/nope/residuals.csv")):
+        assert response.status_code == 404
+        assert response.json() == {"detail": "no such fit job"}

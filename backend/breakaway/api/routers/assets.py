@@ -12,7 +12,7 @@ from pathlib import Path
 
 import plotly
 import fastapi_offline
-from fastapi import APIRouter
+from fastapi import APIRouter, HTTPException
 from fastapi.responses import FileResponse, HTMLResponse, RedirectResponse, Response
 
 router = APIRouter(include_in_schema=False)
@@ -58,8 +58,7 @@ def plotly_js() -> FileResponse:
 @router.get("/vendor/swagger-ui/{name}")
 def swagger_asset(name: str) -> Response:
     if name not in SWAGGER_FILES:
-        return Response('{"detail": "not found"}', status_code=404,
-                        media_type="application/json")
+        raise HTTPException(status_code=404, detail="not found")
     return FileResponse(SWAGGER_DIR / name, media_type=SWAGGER_FILES[name],
                         headers={"Cache-Control": "public, max-age=86400"})
 

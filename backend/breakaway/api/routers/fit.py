@@ -2,7 +2,8 @@
 
 from __future__ import annotations
 
-from fastapi import APIRouter, File, Form, Request, UploadFile
+import orjson
+from fastapi import APIRouter, File, Form, HTTPException, Request, UploadFile
 from fastapi.concurrency import run_in_threadpool
 from fastapi.responses import PlainTextResponse, Response
 
@@ -21,8 +22,6 @@ def _data_error(err: DataError, field: str = "file") -> Response:
     detail = {"type": "data_error", "loc": ["body", field], "msg": str(err)}
     # line and column of the CSV are part of the message; also give them as fields
     body = {"detail": [{**detail, "line": err.line, "column": err.column}]}
-    import orjson
-
     return Response(orjson.dumps(body), status_code=422, media_type="application/json")
 
 
@@ -68,7 +67,7 @@ async def start_fit(request: Request, file: UploadFile = File(...),
     try:
         job = request.app.state.fit_jobs.submit(dataset, file.filename or "upload.csv")
     except Busy as err:
-        return Response(f'{{"detail": "{err}"}}', status_code=429, media_type="application/json")
+        raise HTTPException(status_code=429, detail=str(err)) from None
     return _status(job)
 
 
@@ -78,27 +77,27 @@ def _status(job) -> FitJobStatus:
                         series=job.series)
 
 
-def _not_found(job_id: str) -> Response:
-    return Response('{"detail": "no such fit job"}', status_code=404,
-                    media_type="application/json")
+def _job(job):
+    """The job, or a 404 when there is none by that id."""
+    if job is None:
+        raise HTTPException(status_code=404, detail="no such fit job")
+    return job
 
 
 @router.get("/fit/jobs/{job_id}", response_model=FitJobStatus)
 async def fit_status(job_id: str, request: Request) -> FitJobStatus | Response:
-    job = request.app.state.fit_jobs.get(job_id)
-    return _not_found(job_id) if job is None else _status(job)
+    return _status(_job(request.app.state.fit_jobs.get(job_id)))
 
 
 @router.delete("/fit/jobs/{job_id}", response_model=FitJobStatus)
 async def cancel_fit(job_id: str, request: Request) -> FitJobStatus | Response:
-    job = request.app.state.fit_jobs.cancel(job_id)
-    return _not_found(job_id) if job is None else _status(job)
+    return _status(_job(request.app.state.fit_jobs.cancel(job_id)))
 
 
 @router.get("/fit/jobs/{job_id}/residuals.csv", response_class=PlainTextResponse)
 async def fit_residuals(job_id: str, request: Request) -> Response:
-    job = request.app.state.fit_jobs.get(job_id)
-    if job is None or job.residuals is None:
-        return _not_found(job_id)
+    job = _job(request.app.state.fit_jobs.get(job_id))
+    if job.residuals is None:
+        raise HTTPException(status_code=404, detail="the fit job has no residuals (yet)")
     return PlainTextResponse(job.residuals, media_type="text/csv", headers={
         "content-disposition": 'attachment; filename="residuals.csv"'})

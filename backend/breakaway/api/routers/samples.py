@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from fastapi import APIRouter
+from fastapi import APIRouter, HTTPException
 from fastapi.concurrency import run_in_threadpool
 from fastapi.responses import PlainTextResponse, Response
 
@@ -22,8 +22,7 @@ def list_samples() -> list[SampleInfo]:
 async def sample_csv(name: str) -> Response:
     sample = SAMPLES.get(name)
     if sample is None:
-        return Response('{"detail": "no such sample"}', status_code=404,
-                        media_type="application/json")
+        raise HTTPException(status_code=404, detail="no such sample")
     text = await run_in_threadpool(sample.csv)
     return PlainTextResponse(text, media_type="text/csv", headers={
         "content-disposition": f'attachment; filename="{name}.csv"'})
