@@ -30,6 +30,22 @@ def _regressors(diagnosis: Diagnosis) -> dict[str, np.ndarray]:
     return {"k": problem.k, "direction": problem.direction, "dwell": problem.dwell}
 
 
+def _columns(diagnosis: Diagnosis) -> dict[str, np.ndarray]:
+    """Every row: the regressors, measured F, both models and both residuals."""
+    measured = diagnosis.base.problem.measured
+    return {
+        **_regressors(diagnosis),
+        "measured": measured,
+        "base": diagnosis.base.prediction,
+        "final": diagnosis.final.prediction,
+        "residual_before": measured - diagnosis.base.prediction,
+        "residual_after": measured - diagnosis.final.prediction,
+    }
+
+
+_CSV_NAMES = {"measured": "F_measured", "base": "F_base", "final": "F_final"}
+
+
 def series(diagnosis: Diagnosis, max_points: int = 4000) -> dict:
     """Plot data for the panel, every ``stride``-th row so at most ``max_points`` rows.
 
@@ -41,15 +57,7 @@ def series(diagnosis: Diagnosis, max_points: int = 4000) -> dict:
         ``effect_regressor`` (effect → column name).
     """
     kind = diagnosis.data.kind
-    measured = diagnosis.base.problem.measured
-    columns = {
-        **_regressors(diagnosis),
-        "measured": measured,
-        "base": diagnosis.base.prediction,
-        "final": diagnosis.final.prediction,
-        "residual_before": measured - diagnosis.base.prediction,
-        "residual_after": measured - diagnosis.final.prediction,
-    }
+    columns = _columns(diagnosis)
     order = np.argsort(columns[MAIN_AXIS[kind]], kind="stable")
     stride = max(1, -(-order.size // max_points))
     keep = order[::stride]
@@ -65,11 +73,8 @@ def series(diagnosis: Diagnosis, max_points: int = 4000) -> dict:
 def residuals_csv(diagnosis: Diagnosis) -> str:
     """Every row: the regressors, measured F, both models and both residuals, as CSV."""
     kind = diagnosis.data.kind
-    measured = diagnosis.base.problem.measured
-    columns = {**_regressors(diagnosis), "F_measured": measured,
-               "F_base": diagnosis.base.prediction, "F_final": diagnosis.final.prediction,
-               "residual_before": measured - diagnosis.base.prediction,
-               "residual_after": measured - diagnosis.final.prediction}
+    # the file names the force columns as forces
+    columns = {_CSV_NAMES.get(name, name): values for name, values in _columns(diagnosis).items()}
     out = io.StringIO()
     out.write(f"# kind: {kind}\n# effects: {' '.join(diagnosis.effects) or 'none'}\n")
     out.write(",".join(columns) + "\n")
