@@ -31,6 +31,25 @@ def level(F_hat, Fc, Fs):
     return {"Fc": Fc, "Fs": Fs, "avg": Fc + (Fs - Fc) / 2}[F_hat]
 
 
+def e12_velocity(k, F_hat, s=1.0, z=0.95):
+    """ẋ(z) of (E12) for a constant level ``F̂`` [m/s], without argument checks.
+
+    ``ẋ = −k/(s·F̂·ln z)``; ``k`` [N/s] and ``F̂`` [N] may be arrays (per-row levels in
+    fits), ``s`` [1/m], ``0 < z < 1``.
+    """
+    return np.asanyarray(k, dtype=float) / (s * F_hat * -np.log(z))
+
+
+def e12_acceleration(k, F_hat, s=1.0, z=0.95):
+    """ẍ at ``z`` along the quasi-static branch (E12) [m/s²], without argument checks.
+
+    Differentiating (E12) with ``dz/dt = s·ẋ`` gives ``ẍ = k²/(s·F̂²·z·|ln z|³)``: the
+    acceleration that an inertial term m·ẍ meets at break-away.
+    """
+    k = np.asanyarray(k, dtype=float)
+    return k**2 / (s * F_hat**2 * z * (-np.log(z)) ** 3)
+
+
 def _work_and_slope(v, Fc, Fs, V, delta, sigma):
     """``h(v) = v·Fss(v)`` and ``h'(v)`` for ``v > 0`` (parameters already checked)."""
     y = np.power(v / V, delta)

@@ -7,6 +7,20 @@ import numpy as np
 from .params import check_stribeck
 
 
+def stribeck_kernel(v, Fc, Fs, V, delta):
+    """g(v) of (E2) without argument checks, for fits that move the parameters.
+
+    Same formula as :func:`stribeck_magnitude`; ``Fc`` and ``Fs`` may be arrays (per-row
+    levels, e.g. separate levels per direction). Overflow gives the limits, not warnings.
+    """
+    v = np.abs(np.asanyarray(v, dtype=float))
+    with np.errstate(divide="ignore", over="ignore"):
+        # (|v|/V)^δ: at v = 0 this is 0 for δ > 0 and +inf for δ < 0, which gives the
+        # documented limits g(0) = Fs and g(0) = Fc respectively.
+        weight = np.exp(-np.power(v / V, delta))
+    return Fc + (Fs - Fc) * weight
+
+
 def stribeck_magnitude(v, Fc, Fs, V, delta):
     """Magnitude g(v) of the Stribeck curve (E2).
 
@@ -30,12 +44,7 @@ def stribeck_magnitude(v, Fc, Fs, V, delta):
         g(v) [N], same shape as ``v``.
     """
     check_stribeck(Fc, Fs, V, delta)
-    v = np.abs(np.asanyarray(v, dtype=float))
-    with np.errstate(divide="ignore", over="ignore"):
-        # (|v|/V)^δ: at v = 0 this is 0 for δ > 0 and +inf for δ < 0, which gives the
-        # documented limits g(0) = Fs and g(0) = Fc respectively.
-        weight = np.exp(-np.power(v / V, delta))
-    return Fc + (Fs - Fc) * weight
+    return stribeck_kernel(v, Fc, Fs, V, delta)
 
 
 def steady_state_force(v, Fc, Fs, V, delta, sigma=0.0):

@@ -1,43 +1,75 @@
-"""The effect library and which candidates the data can determine."""
+"""The effect library: one object per effect, and which effects the data can show."""
 
 from __future__ import annotations
 
 import numpy as np
 import pytest
 
-from breakaway.identify.effects import EFFECTS, candidates
+from breakaway.identify.csvdata import Dataset
+from breakaway.identify.effects import EFFECTS, availability, param_spec
+from breakaway.identify.models import problem_for
 from breakaway.identify.synthetic import make_dataset
 
 
+def _dataset(kind, meta=None, **columns):
+    n = len(next(iter(columns.values())))
+    return Dataset(kind=kind, columns={k: np.asarray(v, float) for k, v in columns.items()},
+                   meta=dict(meta or {}), n=n, ignored_columns=(), lines=np.arange(n) + 2)
+
+
+def _available(data):
+    return [name for name, why in availability(problem_for(data)).items() if why is None]
+
+
 def test_library_names_and_keys_follow_the_contract():
-    assert {name: e.params for name, e in EFFECTS.items()} == {
+    assert {name: e.keys for name, e in EFFECTS.items()} == {
         "viscous": ("sigma",), "asymmetry": ("Fc_neg", "Fs_neg"), "offset": ("F_offset",),
         "drift": ("alpha",), "inertia": ("m_e",), "ripple": ("A", "wavelength", "phase"),
-        "lag": ("tau",), "backlash": ("play",), "dwell": ("zeta", "tau_d")}
+        "lag": ("tau",), "backlash": ("play",), "dwell": ("zeta", "tau_d"),
+        "detection": ("tau_det",)}
+
+
+def test_every_parameter_has_a_unit_and_bounds_and_every_effect_a_regressor():
+    for effect in EFFECTS.values():
+        assert set(effect.regressor) == set(effect.kinds)
+        for p in effect.params:
+            assert param_spec(p.name) is p
 
 
 @pytest.mark.parametrize("kind,expected", [
     ("timeseries", ["viscous", "asymmetry", "offset", "drift", "inertia", "ripple", "lag",
                     "backlash"]),
     ("steady", ["viscous", "asymmetry", "offset"]),
-    ("breakaway", ["viscous", "asymmetry", "inertia", "dwell"]),
+    ("breakaway", ["viscous", "asymmetry", "inertia", "dwell", "detection"]),
 ])
-def test_candidates_per_kind(kind, expected):
-    data, _ = make_dataset(kind, (), seed=0, n=2000 if kind == "timeseries" else None)
-    assert candidates(kind, data.columns) == expected
+def test_available_per_kind(kind, expected):
+    data, _ = make_dataset(kind, (), seed=0, n=10_000 if kind == "timeseries" else None)
+    assert _available(data) == expected
 
 
-def test_one_direction_only_has_no_asymmetry_candidate():
+def test_one_direction_only_has_no_asymmetry_or_offset():
     v = np.geomspace(1e-4, 0.1, 20)
-    assert "asymmetry" not in candidates("steady", {"v": v, "F": v})
+    reasons = availability(problem_for(_dataset("steady", v=v, F=v)))
+    assert reasons["asymmetry"].startswith("one-direction")
+    assert reasons["offset"].startswith("one-direction")
     x = np.linspace(0, 1, 50)
-    assert "asymmetry" not in candidates("timeseries", {"t": x, "x": x, "F": x})
+    assert "asymmetry" not in _available(_dataset("timeseries", t=x, x=x, F=x))
 
 
-def test_breakaway_needs_the_columns_its_effects_read():
+def test_breakaway_needs_the_columns_and_rates_its_effects_read():
     k = np.linspace(0.1, 10, 20)
-    assert candidates("breakaway", {"k": k, "F_ba": k}) == ["viscous", "inertia"]
-    same_dwell = {"k": k, "F_ba": k, "dwell": np.full(20, 5.0)}
-    assert "dwell" not in candidates("breakaway", same_dwell)
-    one_way = {"k": k, "F_ba": k, "direction": np.ones(20)}
-    assert "asymmetry" not in candidates("breakaway", one_way)
+    assert _available(_dataset("breakaway", k=k, F_ba=k)) == ["viscous", "inertia", "detection"]
+    same_dwell = _dataset("breakaway", k=k, F_ba=k, dwell=np.full(20, 5.0))
+    assert "dwell" not in _available(same_dwell)
+    one_way = _dataset("breakaway", k=k, F_ba=k, direction=np.ones(20))
+    assert "asymmetry" not in _available(one_way)
+    one_rate = availability(problem_for(_dataset("breakaway", k=np.full(20, 5.0), F_ba=k)))
+    for name in ("viscous", "inertia", "detection"):
+        assert one_rate[name].startswith("single-rate"), name
+
+
+def test_a_short_record_that_mostly_moves_one_way_is_one_direction():
+    data, _ = make_dataset("timeseries", (), seed=0, n=2000)
+    pos, neg, total = problem_for(data).direction_counts()
+    assert neg < 0.05 * total
+    assert availability(problem_for(data))["asymmetry"].startswith("one-direction")

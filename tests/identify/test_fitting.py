@@ -8,7 +8,7 @@ import pytest
 
 from breakaway.identify import FitError, fit_model
 from breakaway.identify.fitting import fit_with_effect
-from breakaway.identify.models import Problem
+from breakaway.identify.models import problem_for as Problem
 from breakaway.identify.synthetic import make_dataset
 
 

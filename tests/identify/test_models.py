@@ -8,7 +8,8 @@ import math
 import numpy as np
 import pytest
 
-from breakaway.identify.models import Problem, lag_filter, play_operator
+from breakaway.identify.effects import lag_filter, play_operator
+from breakaway.identify.models import problem_for as Problem
 from breakaway.identify.synthetic import BASE_TRUTH, make_dataset
 from breakaway.presliding import presliding_force
 from breakaway.quasistatic import breakaway_force, presliding_velocity

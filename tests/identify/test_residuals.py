@@ -7,8 +7,9 @@ import math
 import numpy as np
 import pytest
 
-from breakaway.identify.models import Problem
-from breakaway.identify.residuals import is_white, noise_floor
+from breakaway.identify.models import problem_for as Problem
+from breakaway.identify.noise import noise_floor
+from breakaway.identify.residuals import is_white
 from breakaway.identify.synthetic import make_dataset, with_force
 
 

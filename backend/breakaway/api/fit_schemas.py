@@ -10,6 +10,7 @@ from pydantic import BaseModel, ConfigDict
 class ModelFit(BaseModel):
     params: dict[str, float | None]
     stderr: dict[str, float | None]
+    determined: dict[str, bool]
     rmse: float | None
     bic: float | None
 
@@ -23,6 +24,25 @@ class FitStep(ModelFit):
 class HeldOut(BaseModel):
     before: float | None
     after: float | None
+
+
+class Warning(BaseModel):
+    code: str
+    parameter: str | None
+    message: str
+
+
+class Structure(BaseModel):
+    against: str
+    strength: float
+
+
+class CandidateVerdict(BaseModel):
+    rmse: float | None
+    bic: float | None
+    heldout: float | None
+    accepted: bool
+    reason: str | None
 
 
 class FitReport(BaseModel):
@@ -42,6 +62,9 @@ class FitReport(BaseModel):
     heldout: HeldOut
     residual_white: bool
     unexplained: bool
+    warnings: list[Warning]
+    residual_structure: list[Structure]
+    candidates: dict[str, CandidateVerdict]
 
 
 class FitJobStatus(BaseModel):

@@ -8,9 +8,10 @@ add it, and report the error before and after (MODEL.md §6–§8).
 from __future__ import annotations
 
 from .csvdata import DataError, Dataset, parse_csv, read_csv
-from .diagnosis import Diagnosis, diagnose, report
-from .effects import EFFECTS, candidates
+from .diagnosis import Diagnosis, diagnose
+from .effects import EFFECTS, effects_for
 from .fitting import FitError, FitResult, fit_model
+from .report import report
 
 
 def identify(data: Dataset, progress=None) -> dict:
@@ -19,5 +20,5 @@ def identify(data: Dataset, progress=None) -> dict:
 
 
 __all__ = ["DataError", "Dataset", "Diagnosis", "EFFECTS", "FitError", "FitResult",
-           "candidates", "diagnose", "fit_model", "identify", "parse_csv", "read_csv",
+           "diagnose", "effects_for", "fit_model", "identify", "parse_csv", "read_csv",
            "report"]

@@ -1,17 +1,22 @@
-"""The residual → effect loop and the identification report (MODEL.md §8).
+"""The residual → effect loop (MODEL.md §7, §8).
 
-1. Fit the base model; estimate the noise floor without any model.
-2. While the residual is not white: fit every remaining candidate effect of §7 (all
-   parameters refitted, starts taken from the residual; every round tries them all,
-   since a large effect can mask a small one), and accept the one with the
-   lowest BIC among those that pass every gate — the BIC falls by at least
-   :data:`MIN_BIC_DROP`, the error falls by a share of the structured residual that an
-   effect would have to explain (:data:`MIN_EXCESS_EXPLAINED`), and the held-out error
-   falls too. BIC's ``ln n`` per parameter settles nested ties (``offset`` before
-   ``asymmetry``).
-3. Drop any accepted effect that later ones made redundant (backward check).
-4. ``residual_white`` compares the final residual with the noise floor and with white
-   noise; ``unexplained`` is set when clear structure is left that no candidate explains.
+1. Prepare the data (rows the model cannot use are dropped, with a warning), fit the
+   base model, and estimate the noise floor without any model (:mod:`.noise`).
+2. While the residual is not white: fit every candidate effect that the data can show
+   (all parameters refitted, starts read off the residual), and accept the lowest-BIC
+   one that passes every gate — the BIC falls by at least :data:`MIN_BIC_DROP`, the fit
+   removes a share :data:`MIN_EXCESS_EXPLAINED` of the residual variance above the noise
+   floor, and the held-out error falls. When no single effect passes, pairs of the
+   most promising candidates are tried together (two missing effects can each hide
+   the other's gain). Effects that predict the same data are settled by MODEL.md §7's
+   rule (``indistinguishable``).
+3. Backward and swap passes: drop an accepted effect the others made redundant; swap
+   one for a candidate that explains the data better (held-out error decides).
+4. ``residual_white``, ``unexplained``, ``residual_structure`` and the warnings.
+
+Long time series are screened on an evenly decimated copy (every m-th row keeps the
+noise level and the time structure); the base and final models are then refitted on
+every row.
 """
 
 from __future__ import annotations
@@ -23,10 +28,12 @@ from dataclasses import dataclass, field
 import numpy as np
 from threadpoolctl import threadpool_limits
 
-from .csvdata import Dataset
-from .effects import candidates
-from .fitting import FitResult, best_base_starts, fit_model, fit_with_effect, refit
-from .residuals import is_white, noise_floor, signature
+from .csvdata import MIN_ROWS, Dataset
+from .effects import EFFECTS, availability, viscous_equivalent_of_detection
+from .fitting import FitError, FitResult, best_base_starts, fit_model, fit_with_effect, refit
+from .models import problem_for
+from .noise import NoiseFloor, command_floor, estimate
+from .residuals import is_white, residual_structure
 
 #: A BIC drop of 10 is "very strong" evidence (Kass & Raftery 1995).
 MIN_BIC_DROP = 10.0
@@ -37,6 +44,10 @@ MIN_EXCESS_EXPLAINED = 0.25
 MIN_RMSE_GAIN = 0.01
 #: Structure is "clear" when the final RMSE exceeds the noise floor by this factor.
 UNEXPLAINED_RATIO = 1.3
+#: Time series longer than this are screened on a decimated copy of about this size.
+SCREEN_ROWS = 20_000
+#: Candidates (by BIC) combined in pairs when no single effect passes.
+PAIR_CANDIDATES = 3
 
 
 @dataclass
@@ -48,11 +59,22 @@ class Step:
 
 
 @dataclass
+class Candidate:
+    """The last verdict on one library effect."""
+
+    rmse: float | None = None
+    bic: float | None = None
+    heldout: float | None = None
+    accepted: bool = False
+    reason: str | None = None
+
+
+@dataclass
 class Diagnosis:
     """Everything the report and the explorer's data panel show."""
 
     data: Dataset
-    noise: float
+    noise: NoiseFloor
     base: FitResult
     final: FitResult
     steps: list[Step]
@@ -60,12 +82,53 @@ class Diagnosis:
     heldout_after: float
     white: bool
     unexplained: bool
-    tried: dict = field(default_factory=dict)  # effect -> (rmse, bic, heldout) of the last round
+    candidates: dict[str, Candidate] = field(default_factory=dict)
+    warnings: list[dict] = field(default_factory=list)
+    structure: list[dict] = field(default_factory=list)
+    screened_rows: int = 0
     seconds: float = 0.0
 
     @property
     def effects(self) -> list[str]:
         return list(self.final.effects)
+
+
+def warning(code: str, parameter: str | None, message: str) -> dict:
+    """One entry of the report's ``warnings`` (MODEL.md §8)."""
+    return {"code": code, "parameter": parameter, "message": message}
+
+
+# ---------------------------------------------------------------------------------
+# data preparation
+# ---------------------------------------------------------------------------------
+
+
+def subset(data: Dataset, rows) -> Dataset:
+    """The same dataset restricted to ``rows`` (indices, in order)."""
+    rows = np.asarray(rows)
+    return Dataset(kind=data.kind, columns={k: v[rows] for k, v in data.columns.items()},
+                   meta=data.meta, n=int(rows.size), ignored_columns=data.ignored_columns,
+                   lines=data.lines[rows], meta_lines=data.meta_lines)
+
+
+def prepare(data: Dataset) -> tuple[Dataset, list[dict]]:
+    """Drop the rows the model cannot use: steady rows at v = 0 (E2 has no force there,
+    the measured one is whatever stiction held)."""
+    if data.kind != "steady":
+        return data, []
+    at_rest = data.columns["v"] == 0
+    count = int(np.count_nonzero(at_rest))
+    if not count:
+        return data, []
+    kept = np.flatnonzero(~at_rest)
+    if kept.size < MIN_ROWS:
+        raise FitError(f"only {kept.size} rows have v ≠ 0; at least {MIN_ROWS} are needed")
+    lines = ", ".join(str(int(x)) for x in data.lines[at_rest][:5])
+    more = ", …" if count > 5 else ""
+    return subset(data, kept), [warning(
+        "dropped-rows", None,
+        f"{count} of {data.n} rows have v = 0 (lines {lines}{more}); steady friction is not "
+        "defined at rest, so they were left out")]
 
 
 def heldout_rows(data: Dataset):
@@ -86,15 +149,212 @@ def _heldout_error(data: Dataset, fit: FitResult, train, test) -> float:
     return math.sqrt(float(np.mean(r**2)))
 
 
-def _passes(current: FitResult, trial: FitResult, noise: float) -> bool:
-    if not trial.bic <= current.bic - MIN_BIC_DROP:
-        return False
+# ---------------------------------------------------------------------------------
+# the gates
+# ---------------------------------------------------------------------------------
+
+
+def _gate(current: FitResult, trial: FitResult, noise: float, added: int = 1) -> str | None:
+    """Why ``trial`` does not improve on ``current`` enough (None: it passes)."""
+    drop = current.bic - trial.bic
+    if not drop >= MIN_BIC_DROP * added:
+        return f"the BIC falls by {drop:.1f}, less than the {MIN_BIC_DROP * added:g} required"
     if trial.rmse > (1 - MIN_RMSE_GAIN) * current.rmse:
-        return False
+        gain = 100 * (1 - trial.rmse / current.rmse)
+        return f"the RMSE falls by only {gain:.2g} %"
     excess = current.rmse**2 - noise**2
     if excess <= 0:
-        return False
-    return (current.rmse**2 - trial.rmse**2) >= MIN_EXCESS_EXPLAINED * excess
+        return "the residual is already at the noise floor"
+    share = (current.rmse**2 - trial.rmse**2) / excess
+    if share < MIN_EXCESS_EXPLAINED * added:
+        return (f"it explains {100 * share:.0f} % of the residual variance above the noise "
+                f"floor, less than the {100 * MIN_EXCESS_EXPLAINED * added:.0f} % required")
+    return None
+
+
+class _Loop:
+    """The state of one diagnosis: the screened data, the gates' verdicts, the steps."""
+
+    def __init__(self, data: Dataset, noise: float, report):
+        self.data = data
+        self.noise = noise
+        self.report = report
+        self.train, self.test = heldout_rows(data)
+        self.restarts = best_base_starts(data)
+        self.verdicts: dict[str, Candidate] = {}
+        self.warnings: list[dict] = []
+        self.steps: list[Step] = []
+        self.settled: set[str] = set()  # named away by MODEL.md §7's rule
+
+    def heldout(self, fit: FitResult) -> float:
+        return _heldout_error(self.data, fit, self.train, self.test)
+
+    def white(self, fit: FitResult) -> bool:
+        return is_white(fit.residual(), fit.problem, self.noise)
+
+    def try_effect(self, current: FitResult, effect: str) -> FitResult | None:
+        try:
+            return fit_with_effect(self.data, current, effect, restarts=self.restarts)
+        except (ValueError, FloatingPointError) as exc:
+            self.verdicts[effect] = Candidate(reason=f"the fit failed: {exc}")
+            return None
+
+    def run(self, base: FitResult, available: list[str]) -> tuple[FitResult, float]:
+        current, current_heldout = base, self.heldout(base)
+        remaining = list(available)
+        total = max(len(remaining), 1)
+        while remaining and not self.white(current):
+            trials = {}
+            for i, effect in enumerate(remaining):
+                self.report(min(0.9, 0.1 + 0.8 * (len(self.steps) + i / total) / total),
+                            f"trying {effect}")
+                trial = self.try_effect(current, effect)
+                if trial is not None:
+                    trials[effect] = trial
+            chosen = self._choose(current, current_heldout, trials)
+            if chosen is None:
+                chosen = self._choose_pair(current, current_heldout, trials)
+            if chosen is None:
+                break
+            for effect, fit, heldout, evidence in chosen:
+                self.steps.append(Step(effect, fit, evidence, heldout))
+                remaining.remove(effect)
+                self.report(min(0.9, 0.1 + 0.8 * len(self.steps) / total), f"accepted {effect}")
+            current, current_heldout = chosen[-1][1], chosen[-1][2]
+            remaining = [e for e in remaining if e not in self.settled]
+        if self.white(current):
+            for effect in remaining:
+                if effect not in self.settled:
+                    verdict = self.verdicts.setdefault(effect, Candidate())
+                    verdict.reason = "not needed: the residual is white without it"
+        return current, current_heldout
+
+    def _evidence(self, effect, current, trial, note=""):
+        text = EFFECTS[effect].signature(current.problem, current.residual(), trial.params)
+        return (text + f"; with it the RMSE falls from {current.rmse:.4g} to {trial.rmse:.4g} N"
+                + f" and the BIC by {current.bic - trial.bic:.1f}" + note)
+
+    def _choose(self, current, current_heldout, trials):
+        passing = []
+        for effect, trial in trials.items():
+            reason = _gate(current, trial, self.noise)
+            self.verdicts[effect] = Candidate(trial.rmse, trial.bic, None, False, reason)
+            if reason is None:
+                passing.append(effect)
+        passing = self._settle_indistinguishable(passing, trials)
+        for effect in sorted(passing, key=lambda e: trials[e].bic):
+            trial = trials[effect]
+            heldout = self.heldout(trial)
+            self.verdicts[effect].heldout = heldout
+            if heldout < current_heldout:
+                return [(effect, trial, heldout, self._evidence(effect, current, trial))]
+            self.verdicts[effect].reason = (f"the held-out error rises from "
+                                            f"{current_heldout:.4g} to {heldout:.4g} N")
+        return None
+
+    def _settle_indistinguishable(self, passing, trials):
+        """MODEL.md §7: on break-away data viscous and detection raise F_ba alike where F̂
+        does not vary; name one by the rule and give the other's value."""
+        if not {"viscous", "detection"} <= set(passing):
+            return passing
+        v, d = trials["viscous"], trials["detection"]
+        if abs(v.bic - d.bic) >= MIN_BIC_DROP:
+            return passing
+        problem = v.problem
+        has_s = "s" in self.data.meta
+        named, other = ("viscous", "detection") if has_s else ("detection", "viscous")
+        F_hat = problem.F_hat(v.params["Fc"], v.params["Fs"])
+        if has_s:
+            tau = v.params["sigma"] / viscous_equivalent_of_detection(1.0, problem.s, F_hat) \
+                if F_hat > 0 else math.nan
+            text = (f"viscous and detection predict these break-away data alike; named viscous "
+                    f"because the file gives s = {problem.s:g}. The other reading is a "
+                    f"detection delay tau_det = {tau:.4g} s")
+        else:
+            F_hat = problem.F_hat(d.params["Fc"], d.params["Fs"])
+            sigma = viscous_equivalent_of_detection(d.params["tau_det"], problem.s, F_hat)
+            text = (f"viscous and detection predict these break-away data alike; named "
+                    f"detection because the file gives no '# s:' (σ would scale with an "
+                    f"arbitrary s). The other reading is σ = {sigma:.4g} N·s/m at s = "
+                    f"{problem.s:g}")
+        self.warnings.append(warning("indistinguishable", other, text))
+        self.settled.add(other)
+        self.verdicts[other].reason = (f"indistinguishable from {named} on these data; "
+                                       f"named {named} by the rule of MODEL.md §7")
+        return [e for e in passing if e != other]
+
+    def _choose_pair(self, current, current_heldout, trials):
+        """Two effects that pass the gates together when neither does alone."""
+        promising = sorted((e for e in trials if trials[e].bic < current.bic),
+                           key=lambda e: trials[e].bic)[:PAIR_CANDIDATES]
+        best = None
+        for i, first in enumerate(promising):
+            for second in promising[i + 1:]:
+                self.report(0.9, f"trying {first} with {second}")
+                try:
+                    pair = fit_with_effect(self.data, trials[first], second,
+                                           restarts=self.restarts)
+                except (ValueError, FloatingPointError):
+                    continue
+                if _gate(current, pair, self.noise, added=2) is None and (
+                        best is None or pair.bic < best[2].bic):
+                    best = (first, second, pair)
+        if best is None:
+            return None
+        first, second, pair = best
+        heldout = self.heldout(pair)
+        if heldout >= current_heldout:
+            return None
+        first_fit = trials[first]
+        note = f"; accepted together with {second}, which it masked"
+        return [(first, first_fit, self.heldout(first_fit),
+                 self._evidence(first, current, first_fit, note)),
+                (second, pair, heldout, self._evidence(second, first_fit, pair))]
+
+    def backward(self, current, current_heldout):
+        """Drop accepted effects that the others made redundant (parsimony)."""
+        changed = True
+        while changed and len(current.effects) > 1:
+            changed = False
+            for effect in current.effects:
+                others = tuple(e for e in current.effects if e != effect)
+                reduced = fit_model(self.data, others, starts=[current.params], screen=1)
+                if reduced.bic <= current.bic + MIN_BIC_DROP / 2:
+                    kept = ", ".join(others)
+                    self.verdicts[effect] = Candidate(reduced.rmse, reduced.bic, None, False,
+                                                      f"made redundant by {kept}")
+                    current = reduced
+                    current_heldout = self.heldout(reduced)
+                    changed = True
+                    break
+        return current, current_heldout
+
+    def swap(self, current, current_heldout, available):
+        """Swap an accepted effect for a rejected candidate that explains the data
+        better (a forward step can take a stand-in for the true effect)."""
+        rejected = [e for e in available if e not in current.effects
+                    and self.verdicts.get(e, Candidate()).bic is not None
+                    and self.verdicts[e].bic < current.bic + 10 * MIN_BIC_DROP]
+        for effect in list(current.effects):
+            for candidate in rejected:
+                others = tuple(e for e in current.effects if e != effect)
+                try:
+                    reduced = fit_model(self.data, others, starts=[current.params], screen=1)
+                    trial = fit_with_effect(self.data, reduced, candidate, restarts=self.restarts)
+                except (ValueError, FloatingPointError):
+                    continue
+                if trial.bic > current.bic - MIN_BIC_DROP:
+                    continue
+                heldout = self.heldout(trial)
+                if heldout >= current_heldout:
+                    continue
+                self.verdicts[effect] = Candidate(reduced.rmse, reduced.bic, None, False,
+                                                  f"replaced by {candidate}, which explains "
+                                                  f"the data better")
+                self.steps.append(Step(candidate, trial, self._evidence(
+                    candidate, reduced, trial, f"; it replaces {effect}"), heldout))
+                return self.swap(trial, heldout, available)
+        return current, current_heldout
 
 
 def diagnose(data: Dataset, progress=None) -> Diagnosis:
@@ -116,112 +376,163 @@ def _diagnose(data: Dataset, progress) -> Diagnosis:
     started = time.perf_counter()
     report = progress or (lambda fraction, message: None)
     report(0.0, "fitting the base model")
-    base = fit_model(data)
-    noise = noise_floor(base.problem)
-    train, test = heldout_rows(data)
-    current, current_heldout = base, _heldout_error(data, base, train, test)
-    heldout_before = current_heldout
-    restarts = best_base_starts(data)
-    remaining = candidates(data.kind, data.columns)
-    total = max(len(remaining), 1)
-    steps: list[Step] = []
-    tried = {}
-    while remaining and not is_white(current.residual(), current.problem, noise):
-        trials = {}
-        for i, effect in enumerate(remaining):
-            report(len(steps) / total + i / total**2, f"trying {effect}")
-            try:
-                trials[effect] = fit_with_effect(data, current, effect, restarts=restarts)
-            except ValueError:
-                continue
-        tried = {e: (f.rmse, f.bic, None) for e, f in trials.items()}
-        chosen = None
-        for effect in sorted(trials, key=lambda e: trials[e].bic):
-            trial = trials[effect]
-            if not _passes(current, trial, noise):
-                continue
-            trial_heldout = _heldout_error(data, trial, train, test)
-            tried[effect] = (trial.rmse, trial.bic, trial_heldout)
-            if trial_heldout < current_heldout:
-                chosen = effect, trial, trial_heldout
-                break
-        if chosen is None:
-            break
-        effect, trial, trial_heldout = chosen
-        evidence = (signature(effect, current.problem, current.residual(), trial.params)
-                    + f"; with it the RMSE falls from {current.rmse:.4g} to {trial.rmse:.4g} N"
-                    + f" and the BIC by {current.bic - trial.bic:.1f}")
-        steps.append(Step(effect, trial, evidence, trial_heldout))
-        current, current_heldout = trial, trial_heldout
-        remaining = [e for e in remaining if e != effect]
-        report(len(steps) / total, f"accepted {effect}")
-    current, current_heldout = _backward(data, current, current_heldout, train, test)
-    white = is_white(current.residual(), current.problem, noise)
-    unexplained = (not white) and current.rmse > UNEXPLAINED_RATIO * noise
+    data, warnings = prepare(data)
+    screened = data.kind == "timeseries" and data.n > 1.5 * SCREEN_ROWS
+    screen = subset(data, np.arange(0, data.n, math.ceil(data.n / SCREEN_ROWS))) \
+        if screened else data
+    base = fit_model(screen)
+    full_problem = problem_for(data)
+    noise = estimate(full_problem)
+    if screened:
+        base = refit(data, base, max_nfev=20 * (len(base.problem.names) + 1))
+    command = command_floor(full_problem, noise, base.residual())
+    if command is not None:
+        noise = command
+    warnings += _data_warnings(full_problem, noise)
+    report(0.1, "screening candidate effects")
+
+    loop = _Loop(screen, noise.value, report)
+    screen_base = fit_model(screen, starts=[base.params], screen=1) if screened else base
+    available = []
+    for effect, why in availability(screen_base.problem).items():
+        if why is None:
+            available.append(effect)
+        else:
+            loop.verdicts[effect] = Candidate(reason=why)
+    current, current_heldout = loop.run(screen_base, available)
+    heldout_before = loop.heldout(screen_base)
+    if len(current.effects) > 1:
+        current, current_heldout = loop.backward(current, current_heldout)
+    if current.effects:
+        current, current_heldout = loop.swap(current, current_heldout, available)
+    steps = [s for s in loop.steps if s.effect in current.effects]
+    if screened:
+        report(0.92, "refitting the chosen model on every row")
+        final = refit(data, current, max_nfev=20 * (len(current.problem.names) + 1)) \
+            if current.effects else base
+        steps = [Step(s.effect, final if s.fit is current else _evaluate(data, s.fit),
+                      s.evidence, s.heldout) for s in steps]
+    else:
+        final = current
+    for name in final.effects:
+        loop.verdicts[name] = Candidate(final.rmse, final.bic, current_heldout, True, None)
+    white = is_white(final.residual(), final.problem, noise.value)
+    unexplained = (not white) and final.rmse > UNEXPLAINED_RATIO * noise.value
+    structure = residual_structure(final.residual(), final.problem, white)
+    warnings += loop.warnings + _fit_warnings(final) + _travel_warnings(final, structure)
     report(1.0, "done")
-    return Diagnosis(data, noise, base, current, steps, heldout_before, current_heldout,
-                     white, unexplained, tried, time.perf_counter() - started)
+    return Diagnosis(data, noise, base, final, steps, heldout_before, current_heldout,
+                     white, unexplained, loop.verdicts, warnings, structure,
+                     screen.n if screened else 0, time.perf_counter() - started)
 
 
-def _backward(data, current, current_heldout, train, test):
-    """Drop accepted effects that the others have made redundant (parsimony)."""
-    changed = True
-    while changed and len(current.effects) > 1:
-        changed = False
-        for effect in current.effects:
-            others = tuple(e for e in current.effects if e != effect)
-            reduced = fit_model(data, others, starts=[current.params], screen=1)
-            if reduced.bic <= current.bic + MIN_BIC_DROP / 2:
-                current = reduced
-                current_heldout = _heldout_error(data, reduced, train, test)
-                changed = True
-                break
-    return current, current_heldout
+def _evaluate(data, fit):
+    """``fit``'s parameters evaluated on ``data`` without moving them."""
+    return fit_model(data, fit.effects, starts=[fit.params], screen=1, max_nfev=1)
 
 
 # ---------------------------------------------------------------------------------
-# the report
+# warnings
 # ---------------------------------------------------------------------------------
 
 
-def _clean(value):
-    value = float(value)
-    return value if math.isfinite(value) else None
+def _data_warnings(problem, noise: NoiseFloor) -> list[dict]:
+    out = []
+    q_x = getattr(problem, "quantum_x", 0.0)
+    if q_x > 0:
+        out.append(warning("quantised", "x", (
+            f"x takes steps of {q_x:.4g}: direction changes of up to {problem.hysteresis:.4g} "
+            f"(3 steps) are not reversals, and v is taken over a window of several samples")))
+    if noise.quantum_F > 0:
+        floor = noise.quantum_F / math.sqrt(12)
+        column = "F_ba" if problem.kind == "breakaway" else "F"
+        out.append(warning("quantised", column, (
+            f"{column} takes steps of {noise.quantum_F:.4g} N: the noise floor is not taken "
+            f"below q/√12 = {floor:.4g} N")))
+    if noise.command:
+        out.append(warning("force-is-command", "F", (
+            f"the force column is noise-free (differences estimate {noise.smooth_F:.3g} N): "
+            f"it is a command and the measurement noise sits in x; the noise floor "
+            f"{noise.value:.4g} N is that of the base model's residual")))
+    counts = problem.direction_counts()
+    if counts is not None and problem.kind != "breakaway":
+        pos, neg, total = counts
+        reason = EFFECTS["asymmetry"].unavailable(problem)
+        if reason and reason.startswith("one-direction"):
+            share = 100 * min(pos, neg) / max(total, 1)
+            out.append(warning("one-direction", None, (
+                f"motion is essentially in one direction ({pos} rows positive, {neg} negative, "
+                f"{share:.2g} % the other way): offset and asymmetry are not tried, since "
+                f"an offset and the level cannot be separated without both directions")))
+    if problem.kind == "breakaway" and problem.level_only:
+        rates = ", ".join(f"{k:g}" for k in np.unique(problem.k))
+        out.append(warning("single-rate", None, (
+            f"break-away measured at {problem.distinct_rates} distinct rate(s) (k = {rates}): "
+            f"only the level is determined; it is reported as Fs (= Fc), and V and δ are "
+            f"not determined")))
+    return out
 
 
-def _model_entry(fit: FitResult) -> dict:
-    return {"params": {k: _clean(v) for k, v in fit.params.items()},
-            "stderr": {k: _clean(v) for k, v in fit.stderr.items()},
-            "rmse": _clean(fit.rmse), "bic": _clean(fit.bic)}
+_WHY = {
+    "flat": "moves along a flat direction of the fit",
+    "relative": "has a standard error larger than its value",
+    "artefact": "has a standard error below 1e-9 of its value (a numerical artefact)",
+}
 
 
-def report(diagnosis: Diagnosis) -> dict:
-    """The §8 identification report as a JSON-ready dict.
+def _fit_warnings(fit: FitResult) -> list[dict]:
+    out = []
+    a = fit.assessment
+    for name, reason in a.why.items():
+        if reason is None or reason == "fixed":
+            continue
+        value = fit.params[name]
+        if reason == "at-bound":
+            side = a.bound.get(name, "a")
+            text = f"{name} = {value:.4g} ended on the {side} bound of its range"
+            if name in ("Fs", "Fs_neg"):
+                low = "Fc" if name == "Fs" else "Fc_neg"
+                text += (f" ({name} = {low}): the data show no velocity weakening, so the "
+                         f"Stribeck velocity and shape are not determined")
+            out.append(warning("at-bound", name, text + "; it is not a result"))
+            continue
+        if reason.startswith("correlated:"):
+            other = reason.split(":", 1)[1]
+            text = (f"{name} = {value:.4g} is correlated above 0.99 with {other}: the data "
+                    f"determine a combination of the two, not each")
+        else:
+            se = a.stderr.get(name)
+            se_text = f" (± {se:.2g})" if se is not None else ""
+            text = f"{name} = {value:.4g}{se_text} {_WHY[reason]}: the data do not determine it"
+        out.append(warning("undetermined", name, text))
+    return out
 
-    Besides the §8 keys, each model entry carries ``stderr`` (standard errors of its
-    parameters, ``null`` where the data do not determine one), each step its held-out
-    error ``heldout``, and the report carries
-    ``candidates`` (each effect tried in the last round against the model it would have
-    extended: its RMSE and BIC, and its held-out error where it passed the other gates)
-    and ``seconds`` (wall time of the diagnosis).
-    """
-    d = diagnosis
-    return {
-        "kind": d.data.kind,
-        "n": d.data.n,
-        "noise_floor": _clean(d.noise),
-        "base": _model_entry(d.base),
-        "steps": [{"effect": s.effect, **_model_entry(s.fit), "evidence": s.evidence,
-                   "heldout": _clean(s.heldout)} for s in d.steps],
-        "effects": d.effects,
-        "final": _model_entry(d.final),
-        "error_before": _clean(d.base.rmse),
-        "error_after": _clean(d.final.rmse),
-        "heldout": {"before": _clean(d.heldout_before), "after": _clean(d.heldout_after)},
-        "residual_white": bool(d.white),
-        "unexplained": bool(d.unexplained),
-        "candidates": {e: {"rmse": _clean(rmse), "bic": _clean(b),
-                           "heldout": None if h is None else _clean(h)}
-                       for e, (rmse, b, h) in d.tried.items()},
-        "seconds": round(d.seconds, 3),
-    }
+
+def _travel_warnings(fit: FitResult, structure: list[dict]) -> list[dict]:
+    """``short-travel``: the residual depends on x at a scale the travel cannot hold
+    twice, so ``ripple`` was not tried there."""
+    if fit.problem.kind != "timeseries" or not structure:
+        return []
+    strength = {s["against"]: s["strength"] for s in structure}.get("x", 0.0)
+    if strength < 0.1 or "ripple" in fit.effects:
+        return []
+    from .effects import MIN_RIPPLE_PERIODS, periodogram
+
+    problem = fit.problem
+    travel = problem.scales.travel
+    short = np.geomspace(max(4 * problem.scales.step, travel / 2000), travel / MIN_RIPPLE_PERIODS, 200)
+    long = np.geomspace(travel / MIN_RIPPLE_PERIODS, 4 * travel, 60)
+    r = fit.residual()
+    p_short = periodogram(problem.x, r, short).max()
+    p_long = periodogram(problem.x, r, long)
+    if p_long.max() <= p_short:
+        return []
+    lam = long[int(np.argmax(p_long))]
+    return [warning("short-travel", None, (
+        f"the residual depends on x ({100 * strength:.0f} % of its variance), most strongly "
+        f"at a wavelength of about {lam:.3g} over a travel of {travel:.3g}: the travel holds "
+        f"fewer than {MIN_RIPPLE_PERIODS:g} such periods, so ripple is not tried there"))]
+
+
+__all__ = ["Candidate", "Diagnosis", "MIN_BIC_DROP", "Step", "diagnose", "heldout_rows",
+           "prepare", "subset", "warning"]

@@ -11,10 +11,11 @@ from dataclasses import dataclass
 
 import numpy as np
 from scipy.optimize import least_squares
-from scipy.signal import lombscargle
 
 from .csvdata import Dataset
-from .models import LOG_PARAMS, Problem
+from .effects import EFFECTS
+from .identifiability import Assessment, assess
+from .models import Problem, problem_for
 
 
 class FitError(ValueError):
@@ -33,7 +34,9 @@ class FitResult:
         §7 keys), the input of :meth:`Problem.predict`.
     stderr : dict
         Standard errors from the Jacobian (delta method through the transforms);
-        ``inf`` where the data do not determine a parameter.
+        None where the data give none (:mod:`breakaway.identify.identifiability`).
+    determined : dict
+        Whether the data determine each parameter; ``why`` says why not.
     rmse : float
         Root mean square of measured − predicted F over the fitted rows [N].
     bic : float
@@ -46,12 +49,20 @@ class FitResult:
 
     effects: tuple[str, ...]
     params: dict
-    stderr: dict
     rmse: float
     bic: float
     n: int
     prediction: np.ndarray
     problem: Problem
+    assessment: Assessment
+
+    @property
+    def stderr(self) -> dict:
+        return self.assessment.stderr
+
+    @property
+    def determined(self) -> dict:
+        return self.assessment.determined
 
     def residual(self) -> np.ndarray:
         """Measured minus predicted F for every row [N]."""
@@ -89,6 +100,9 @@ def _level_guesses(problem: Problem):
 def base_starts(problem: Problem) -> list[dict]:
     """A grid of starting points for the base parameters (levels from the data)."""
     Fc, Fs = _level_guesses(problem)
+    if problem.level_only:
+        return [{"Fc": float(np.median(problem.measured)), "Fs": float(np.median(problem.measured)),
+                 **problem.fixed}]
     speeds = problem.scales.speed * np.array([0.03, 0.1, 0.3, 1.0])
     starts = []
     for V in speeds:
@@ -105,83 +119,7 @@ def base_starts(problem: Problem) -> list[dict]:
 
 def effect_starts(problem: Problem, effect: str, current: dict, residual: np.ndarray) -> list[dict]:
     """Starting values of one effect's parameters from the current residual."""
-    kind = problem.data.kind
-    r = residual
-    if effect == "viscous":
-        v = problem.k / (problem.s * current["Fc"] * -math.log(0.95)) if kind == "breakaway" else problem.v
-        sigma = float(np.dot(r, v) / max(np.dot(v, v), 1e-300))
-        return [{"sigma": max(sigma, 0.0)}]
-    if effect == "asymmetry":
-        if kind == "timeseries":
-            neg = problem.d < 0
-            sliding = np.abs(problem.v) >= np.median(np.abs(problem.v))
-            sel = neg & sliding
-            shift = -float(np.median(r[sel])) if np.any(sel) else 0.0
-        elif kind == "steady":
-            sel = problem.v < 0
-            shift = -float(np.median(r[sel])) if np.any(sel) else 0.0
-        else:
-            sel = problem.direction < 0
-            shift = float(np.median(r[sel])) if np.any(sel) else 0.0
-        Fc_neg = max(current["Fc"] + shift, 1e-3 * current["Fc"])
-        Fs_neg = max(current["Fs"] + shift, Fc_neg)
-        return [{"Fc_neg": Fc_neg, "Fs_neg": Fs_neg},
-                {"Fc_neg": current["Fc"], "Fs_neg": current["Fs"]}]
-    if effect == "offset":
-        return [{"F_offset": float(np.median(r))}]
-    if effect == "drift":
-        basis = (problem.t - problem.t[0]) * (problem.measured - r)
-        alpha = float(np.dot(r, basis) / max(np.dot(basis, basis), 1e-300))
-        lo, hi = problem.bounds()[0][-1], problem.bounds()[1][-1]
-        return [{"alpha": float(np.clip(alpha, 0.9 * lo, 0.9 * hi))}]
-    if effect == "inertia":
-        a = problem.a if kind == "timeseries" else problem.k**2
-        m = float(np.dot(r, a) / max(np.dot(a, a), 1e-300))
-        if kind == "breakaway":
-            F_hat = current["Fc"] + (current["Fs"] - current["Fc"]) / 2
-            m *= problem.s * F_hat**2 * 0.95 * (-math.log(0.95)) ** 3
-        return [{"m_e": max(m, 0.0)}]
-    if effect == "ripple":
-        return _ripple_starts(problem, r)
-    if effect == "lag":
-        char_time = problem.scales.speed / max(problem.scales.accel, 1e-300)
-        return [{"tau": float(tau)} for tau in char_time * np.array([0.003, 0.01, 0.03, 0.1, 0.3])]
-    if effect == "backlash":
-        travel = problem.scales.travel
-        presliding = 1.0 / current["s"]
-        plays = np.concatenate([travel * np.array([0.003, 0.01, 0.03, 0.1]),
-                                presliding * np.array([0.3, 1.0, 3.0])])
-        plays = plays[plays < travel / 2]
-        return [{"play": float(b)} for b in plays]
-    if effect == "dwell":
-        positive = problem.dwell[problem.dwell > 0]
-        scale = float(np.median(positive)) if positive.size else 1.0
-        return [{"zeta": z, "tau_d": scale * f} for z in (0.1, 0.5) for f in (0.1, 1.0, 10.0)]
-    raise ValueError(f"unknown effect {effect!r}")
-
-
-def _ripple_starts(problem: Problem, r):
-    """Wavelengths of the strongest periodogram peaks of the residual against x."""
-    x = problem.x
-    travel, step = problem.scales.travel, problem.scales.step
-    wavelengths = np.geomspace(max(4 * step, travel / 2000), travel / 1.5, 600)
-    omega = 2 * np.pi / wavelengths
-    # subsample long records: the periodogram's cost is n × frequencies
-    stride = max(1, x.size // 4000)
-    power = lombscargle(x[::stride], r[::stride] - r.mean(), omega)
-    starts = []
-    for idx in np.argsort(power)[::-1][:40]:
-        lam = wavelengths[idx]
-        if any(abs(math.log(lam / s["wavelength"])) < 0.05 for s in starts):
-            continue
-        phase = 2 * np.pi * x / lam
-        basis = np.column_stack([np.sin(phase), np.cos(phase)])
-        (c_sin, c_cos), *_ = np.linalg.lstsq(basis, r, rcond=None)
-        starts.append({"A": float(math.hypot(c_sin, c_cos)), "wavelength": float(lam),
-                       "phase": float(math.atan2(c_cos, c_sin))})
-        if len(starts) == 3:
-            break
-    return starts
+    return EFFECTS[effect].starts(problem, current, residual)
 
 
 # ---------------------------------------------------------------------------------
@@ -208,38 +146,6 @@ def _solve(problem, theta0, rows, max_nfev):
 
     return least_squares(residual, theta0, bounds=(lo, hi), method="trf", x_scale="jac",
                          max_nfev=max_nfev)
-
-
-def _stderr(problem, result, n):
-    names = problem.names
-    p = len(names)
-    dof = max(n - p, 1)
-    s2 = 2 * result.cost / dof
-    J = result.jac
-    try:
-        cov = np.linalg.pinv(J.T @ J) * s2
-    except np.linalg.LinAlgError:
-        return {name: math.inf for name in names}
-    # Jacobian of params with respect to θ (transforms of models.Problem)
-    params = problem.to_params(result.x)
-    G = np.zeros((p, p))
-    for i, name in enumerate(names):
-        if name in LOG_PARAMS:
-            G[i, i] = params[name]
-        else:
-            G[i, i] = 1.0
-    for level, base in (("Fs", "Fc"), ("Fs_neg", "Fc_neg")):
-        if level in names:
-            G[names.index(level), names.index(base)] = 1.0
-    cov_p = G @ cov @ G.T
-    # a direction the data do not determine shows up as a (near) zero singular value
-    sv = np.linalg.svd(J, compute_uv=False)
-    rank_deficient = sv.size == 0 or sv[-1] < 1e-10 * sv[0]
-    out = {}
-    for i, name in enumerate(names):
-        value = math.sqrt(max(cov_p[i, i], 0.0))
-        out[name] = math.inf if (rank_deficient and value == 0.0) else value
-    return out
 
 
 def fit_model(data: Dataset, effects=(), starts=None, rows=None, max_nfev=None,
@@ -269,7 +175,7 @@ def fit_model(data: Dataset, effects=(), starts=None, rows=None, max_nfev=None,
     -------
     FitResult
     """
-    problem = Problem(data, tuple(effects), dict(fixed or {}))
+    problem = problem_for(data, tuple(effects), dict(fixed or {}))
     rows = np.arange(data.n) if rows is None else np.asarray(rows)
     if rows.dtype == bool:
         rows = np.flatnonzero(rows)
@@ -302,10 +208,9 @@ def fit_model(data: Dataset, effects=(), starts=None, rows=None, max_nfev=None,
     prediction = problem.predict(params)
     r = problem.measured[rows] - prediction[rows]
     rss = float(np.dot(r, r))
-    stderr = {**_stderr(problem, best, n), **{name: 0.0 for name in problem.fixed}}
-    return FitResult(tuple(effects), params, stderr,
-                     math.sqrt(rss / n), bic(rss, n, len(problem.names)), n, prediction,
-                     problem)
+    assessment = assess(problem, best.x, best.jac, best.cost, n, best.active_mask)
+    return FitResult(problem.effects, params, math.sqrt(rss / n),
+                     bic(rss, n, len(problem.names)), n, prediction, problem, assessment)
 
 
 def refit(data: Dataset, fit: FitResult, rows=None, max_nfev=None) -> FitResult:
@@ -316,7 +221,7 @@ def refit(data: Dataset, fit: FitResult, rows=None, max_nfev=None) -> FitResult:
 
 def best_base_starts(data: Dataset, count: int = 4) -> list[dict]:
     """The ``count`` base starting points of :func:`base_starts` with the lowest cost."""
-    problem = Problem(data)
+    problem = problem_for(data)
     starts = base_starts(problem)
     rows = np.arange(data.n)
     costs = [_cost(problem, s, rows) for s in starts]
@@ -331,19 +236,15 @@ def fit_with_effect(data: Dataset, current: FitResult, effect: str, rows=None,
     and the same effect values on each of ``restarts`` (base parameter sets, e.g.
     :func:`best_base_starts`), so a fit is not trapped in the current model's basin.
     """
-    problem = Problem(data, current.effects + (effect,))
-    extras = effect_starts(problem, effect, current.params, current.residual())
+    problem = problem_for(data, current.effects + (effect,))
+    extras = effect_starts(current.problem, effect, current.params, current.residual())
     starts = []
     for origin in (current.params, *restarts):
         starts.extend({**current.params, **origin, **extra} for extra in extras)
-    if effect in PROFILED:
-        return _profiled_fit(data, problem.effects, PROFILED[effect], starts, rows)
+    profiled = [p.name for p in EFFECTS[effect].params if p.profiled]
+    if profiled:
+        return _profiled_fit(data, problem.effects, profiled[0], starts, rows)
     return fit_model(data, problem.effects, starts=starts, rows=rows, screen=screen)
-
-
-#: Effects whose parameter switches the model discretely (the play engages or not):
-#: finite differences cannot move it, so it is profiled on its grid of starts and 0.
-PROFILED = {"backlash": "play"}
 
 
 def _profiled_fit(data, effects, name, starts, rows):
@@ -354,7 +255,7 @@ def _profiled_fit(data, effects, name, starts, rows):
     zero = {**starts[0], name: 0.0}
     by_value.setdefault(0.0, [zero])
     best = None
-    n_free = len(Problem(data, effects).names) - 1
+    n_free = len(problem_for(data, effects).names) - 1
     for value, group in by_value.items():
         fit = fit_model(data, effects, starts=group, rows=rows, screen=1, fixed={name: value},
                         max_nfev=8 * (n_free + 1))

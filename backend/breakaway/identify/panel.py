@@ -8,14 +8,8 @@ import io
 import numpy as np
 
 from .diagnosis import Diagnosis
+from .effects import EFFECTS
 
-#: Which regressor shows each effect's signature (the x-axis of its residual plot).
-EFFECT_REGRESSOR = {
-    "timeseries": {"viscous": "v", "asymmetry": "v", "offset": "t", "drift": "t",
-                   "inertia": "a", "ripple": "x", "lag": "v", "backlash": "x"},
-    "steady": {"viscous": "v", "asymmetry": "v", "offset": "v"},
-    "breakaway": {"viscous": "k", "asymmetry": "direction", "inertia": "k", "dwell": "dwell"},
-}
 #: The axis of the main plot per kind.
 MAIN_AXIS = {"timeseries": "t", "steady": "v", "breakaway": "k"}
 
@@ -66,7 +60,7 @@ def series(diagnosis: Diagnosis, max_points: int = 4000) -> dict:
         "stride": stride,
         "columns": {name: np.asarray(values, float)[keep].tolist()
                     for name, values in columns.items()},
-        "effect_regressor": {e: EFFECT_REGRESSOR[kind][e] for e in diagnosis.effects},
+        "effect_regressor": {e: EFFECTS[e].regressor[kind] for e in diagnosis.effects},
     }
 
 

@@ -1,0 +1,140 @@
+"""What a fit determines (MODEL.md §8): standard errors and ``determined`` flags.
+
+A parameter is not determined when it sits on a bound of its range, when it moves along
+a flat direction of the fit (a near-zero singular value of the column-scaled Jacobian),
+when its relative standard error exceeds 1, or when it is correlated above 0.99 with
+another parameter. A finite standard error below 1e-9 of the value is a numerical
+artefact (a Jacobian column that rounding left almost empty), never a result: it is
+reported as not determined, with no standard error.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .effects import param_spec
+
+#: Relative standard error above which a parameter is not determined.
+MAX_RELATIVE_ERROR = 1.0
+#: Correlation above which two parameters are not separately determined.
+MAX_CORRELATION = 0.99
+#: Singular values of the column-scaled Jacobian below this share of the largest span
+#: a flat direction.
+FLAT_SINGULAR_VALUE = 1e-7
+#: A standard error below this share of its value is a numerical artefact.
+ARTEFACT_RELATIVE_ERROR = 1e-9
+#: θ within this share of its range from a bound sits on it.
+BOUND_TOLERANCE = 1e-6
+
+
+@dataclass
+class Assessment:
+    """Standard errors, flags and reasons for every parameter of a fit.
+
+    ``stderr[name]`` is a float, or None where the data give none (flat, at a bound,
+    artefact, held fixed); ``why[name]`` is None for a determined parameter, else a short
+    reason: ``"at-bound"``, ``"flat"``, ``"relative"``, ``"correlated:<other>"``,
+    ``"artefact"`` or ``"fixed"``.
+    """
+
+    stderr: dict
+    determined: dict
+    why: dict
+    bound: dict  # name -> "lower" / "upper" for parameters on a bound
+
+
+def assess(problem, theta, jac, cost, n, active_mask=None) -> Assessment:
+    """Assess a least-squares solution ``theta`` of ``problem`` on ``n`` rows.
+
+    Parameters
+    ----------
+    problem : Problem
+    theta : numpy.ndarray
+        Solution in the fit's coordinates.
+    jac : numpy.ndarray
+        Jacobian of the residuals with respect to θ at the solution, shape (n, p).
+    cost : float
+        Half the residual sum of squares.
+    n : int
+        Rows fitted.
+    active_mask : numpy.ndarray, optional
+        ``least_squares``' active bounds (−1 lower, 1 upper, 0 free).
+    """
+    names = problem.names
+    p = len(names)
+    params = problem.to_params(theta)
+    stderr, determined, why, bound = {}, {}, {}, {}
+    for name in problem.all_names:
+        if name not in names:
+            stderr[name], determined[name], why[name] = None, False, "fixed"
+    if p == 0:
+        return Assessment(stderr, determined, why, bound)
+
+    lo, hi = problem.bounds()
+    span = np.where(np.isfinite(hi - lo), hi - lo, 1.0)
+    at_lo = theta <= lo + BOUND_TOLERANCE * span
+    at_hi = theta >= hi - BOUND_TOLERANCE * span
+    if active_mask is not None:
+        at_lo |= np.asarray(active_mask) < 0
+        at_hi |= np.asarray(active_mask) > 0
+
+    J = np.asarray(jac, dtype=float)
+    s2 = 2.0 * cost / max(n - p, 1)
+    norms = np.sqrt(np.sum(J * J, axis=0))
+    biggest = float(norms.max()) if norms.size else 0.0
+    empty = ~(norms > 1e-14 * biggest) if biggest > 0 else np.ones(p, dtype=bool)
+    cov = np.full((p, p), np.nan)
+    flat = empty.copy()
+    live = np.flatnonzero(~empty)
+    if live.size:
+        Js = J[:, live] / norms[live]
+        _, S, Vt = np.linalg.svd(Js, full_matrices=False)
+        keep = S > FLAT_SINGULAR_VALUE * S[0]
+        if not keep.all():
+            # parameters with weight in a flat direction are not determined
+            weight = np.max(np.abs(Vt[~keep]), axis=0)
+            flat[live[weight > 0.1]] = True
+        inv = (Vt[keep].T / S[keep] ** 2) @ Vt[keep]
+        cov[np.ix_(live, live)] = inv / np.outer(norms[live], norms[live]) * s2
+
+    # to the parameters' own units (log scale, Fs carried above Fc)
+    G = np.zeros((p, p))
+    for i, name in enumerate(names):
+        G[i, i] = params[name] if problem.is_log(name) else 1.0
+        gap = problem._gap_base(name)
+        if gap:
+            G[i, names.index(gap)] = 1.0
+    cov_p = G @ np.nan_to_num(cov) @ G.T
+    var = np.diag(cov_p)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        corr = cov_p / np.sqrt(np.outer(var, var))
+
+    for i, name in enumerate(names):
+        value = params[name]
+        se = math.sqrt(var[i]) if var[i] > 0 and not flat[i] else None
+        reason = None
+        if at_lo[i] or at_hi[i]:
+            reason = "at-bound"
+            bound[name] = "lower" if at_lo[i] else "upper"
+            se = None
+        elif flat[i] or se is None:
+            reason, se = "flat", None
+        elif se < ARTEFACT_RELATIVE_ERROR * abs(value):
+            reason, se = "artefact", None
+        elif param_spec(name).relative and se > MAX_RELATIVE_ERROR * abs(value):
+            reason = "relative"
+        else:
+            others = [j for j in range(p) if j != i and not flat[j]
+                      and np.isfinite(corr[i, j]) and abs(corr[i, j]) > MAX_CORRELATION]
+            if others:
+                reason = f"correlated:{names[others[0]]}"
+        stderr[name] = se
+        determined[name] = reason is None
+        why[name] = reason
+    return Assessment(stderr, determined, why, bound)
+
+
+__all__ = ["Assessment", "MAX_CORRELATION", "MAX_RELATIVE_ERROR", "assess"]

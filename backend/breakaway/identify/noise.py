@@ -1,0 +1,178 @@
+"""The measurement noise, estimated without any model (MODEL.md §8 ``noise_floor``).
+
+- Rows that share their regressor (repeats: the same speed, or the same rate, direction
+  and dwell) give the noise directly: the pooled within-group standard deviation. Where
+  the data have enough repeats this is the estimate, whatever the other estimators say.
+- Otherwise F is taken as smooth along its regressor (time, speed, rate): robust (MAD)
+  second and third differences; each is unbiased for white noise and too high where F
+  curves, so the smaller is taken.
+- Never below the quantisation of the force column, ``q/√12``.
+- A force column that is noise-free (a commanded force: the noise sits in x) is found
+  by comparing its differences with those of the base model's residual
+  (:func:`command_floor`); the floor is then the residual's, and a warning says so.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from math import comb
+
+import numpy as np
+
+from .kinematics import quantum
+
+_MAD_TO_STD = 1.4826
+#: Repeats give the floor when at least this share of rows (and 6) have a repeat.
+MIN_REPLICATED_SHARE = 0.3
+#: A force column whose differences are below this share of the residual's is a command.
+COMMAND_RATIO = 0.1
+#: ... or below this share of the force scale.
+COMMAND_RELATIVE = 1e-6
+
+
+@dataclass
+class NoiseFloor:
+    """The estimate and how it was made.
+
+    ``method`` is ``"replicates"``, ``"differences"``, ``"quantisation"`` or
+    ``"residual differences (force is a command)"``; ``quantum_F`` the step of the
+    force column (0 if none); ``smooth_F`` the differences estimate of F alone.
+    """
+
+    value: float
+    method: str
+    quantum_F: float = 0.0
+    smooth_F: float = math.nan
+    replicated_rows: int = 0
+    command: bool = False
+
+
+def _replicate_sigma(F, keys, nuisance=None):
+    """Pooled within-group std of rows sharing ``keys``, and the replicated row count.
+
+    With ``nuisance`` (a second factor, e.g. dwell, that varies inside the groups), the
+    groups and the nuisance levels are fitted as additive means and the std comes from
+    what is left (a two-way layout), so a nuisance effect is not counted as noise.
+    """
+    _, inverse, counts = np.unique(keys, axis=0, return_inverse=True, return_counts=True)
+    inverse = inverse.ravel()
+    replicated = counts[inverse] >= 2
+    rows = int(replicated.sum())
+    if rows < max(6, MIN_REPLICATED_SHARE * F.size):
+        return math.nan, rows
+    if nuisance is None or np.unique(nuisance).size < 2:
+        means = np.bincount(inverse, F) / counts
+        dev = F[replicated] - means[inverse[replicated]]
+        dof = rows - np.count_nonzero(counts >= 2)
+        return float(math.sqrt(np.dot(dev, dev) / max(dof, 1))), rows
+    sel = np.flatnonzero(replicated)
+    groups = np.unique(inverse[sel], return_inverse=True)[1].ravel()
+    levels = np.unique(nuisance[sel], return_inverse=True)[1].ravel()
+    design = np.zeros((sel.size, groups.max() + 1 + levels.max()))
+    design[np.arange(sel.size), groups] = 1.0
+    extra = levels > 0  # the first level is the reference
+    design[np.flatnonzero(extra), groups.max() + levels[extra]] = 1.0
+    _, _, rank, _ = np.linalg.lstsq(design, F[sel], rcond=None)
+    coef = np.linalg.lstsq(design, F[sel], rcond=None)[0]
+    dev = F[sel] - design @ coef
+    dof = sel.size - rank
+    if dof < 3:
+        return math.nan, rows
+    return float(math.sqrt(np.dot(dev, dev) / dof)), rows
+
+
+def replicate_keys(problem) -> list[tuple[np.ndarray, np.ndarray | None]]:
+    """Ways rows can repeat one another: (keys that must agree, nuisance factor)."""
+    if problem.kind == "steady":
+        return [(problem.v[:, None], None)]
+    if problem.kind == "breakaway":
+        # rows repeat one another when rate, direction and dwell agree; failing that,
+        # rows at one rate and direction, with dwell as an additive nuisance factor
+        return [(np.column_stack([problem.k, problem.direction, problem.dwell]), None),
+                (np.column_stack([problem.k, problem.direction]), problem.dwell)]
+    return []
+
+
+def orderings(problem) -> list[list[np.ndarray]]:
+    """Ways to split the rows into groups ordered by the regressor, inside which F varies
+    smoothly; the first is the finest."""
+    if problem.kind == "timeseries":
+        return [[np.arange(problem.data.n)]]
+    if problem.kind == "steady":
+        order = np.argsort(problem.v, kind="stable")
+        v = problem.v[order]
+        return [[order[v < 0], order[v > 0]]]
+    keys = np.column_stack([problem.direction, problem.dwell])
+    order = np.lexsort((problem.k, problem.dwell, problem.direction))
+    fine = [order[np.all(keys[order] == key, axis=1)] for key in np.unique(keys, axis=0)]
+    order = np.lexsort((problem.k, problem.direction))
+    coarse = [order[problem.direction[order] == value] for value in np.unique(problem.direction)]
+    return [fine, coarse]
+
+
+def difference_sigma(values, groupings) -> float:
+    """Smallest robust noise estimate from 2nd and 3rd differences along ``groupings``."""
+    estimates = []
+    for groups in groupings:
+        for order in (2, 3):
+            diffs = [np.diff(values[g], order) / math.sqrt(comb(2 * order, order))
+                     for g in groups if g.size > order + 2]
+            if diffs:
+                e = np.concatenate(diffs)
+                estimates.append(_MAD_TO_STD * float(np.median(np.abs(e))))
+    return min(estimates) if estimates else math.nan
+
+
+def estimate(problem) -> NoiseFloor:
+    """Model-free estimate of the measurement noise std [N] (see the module docstring)."""
+    F = problem.measured
+    q = quantum(F)
+    smooth = difference_sigma(F, orderings(problem))
+    floor, method, rows = math.nan, "differences", 0
+    for keys, nuisance in replicate_keys(problem):
+        sigma, rows = _replicate_sigma(F, keys, nuisance)
+        if math.isfinite(sigma):
+            floor, method = sigma, "replicates"
+            break
+    if not math.isfinite(floor):
+        floor = smooth
+    if q > 0 and not floor >= q / math.sqrt(12):
+        floor, method = q / math.sqrt(12), "quantisation"
+    if not floor > 0:
+        # noise-free, unquantised data: the finest resolution the column shows
+        steps = np.diff(np.unique(F))
+        steps = steps[steps > 0]
+        floor = float(np.min(steps)) / math.sqrt(12) if steps.size else 0.0
+        method = "quantisation"
+    return NoiseFloor(floor, method, q, smooth, rows)
+
+
+def noise_floor(problem) -> float:
+    """The model-free noise floor [N] of :func:`estimate`."""
+    return estimate(problem).value
+
+
+def command_floor(problem, noise: NoiseFloor, residual) -> NoiseFloor | None:
+    """The floor when the force column is a noise-free command, else None.
+
+    The force is a command when its own differences are far smaller than those of the
+    base model's residual (the residual then carries the noise of x through the model),
+    or negligible against the force scale. The floor is then the residual's
+    differences estimate (never below the force quantisation).
+    """
+    if problem.kind == "breakaway" or noise.method == "replicates":
+        return None
+    e_F = noise.smooth_F
+    e_r = difference_sigma(residual, orderings(problem))
+    if not (math.isfinite(e_F) and math.isfinite(e_r) and e_r > 0):
+        return None
+    if not (e_F < COMMAND_RATIO * e_r or e_F < COMMAND_RELATIVE * problem.scales.force):
+        return None
+    value = max(e_r, noise.quantum_F / math.sqrt(12))
+    return NoiseFloor(value, "residual differences (force is a command)", noise.quantum_F,
+                      e_F, 0, command=True)
+
+
+__all__ = ["NoiseFloor", "command_floor", "difference_sigma", "estimate", "noise_floor",
+           "orderings"]

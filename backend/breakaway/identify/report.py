@@ -1,0 +1,86 @@
+"""The MODEL.md §8 identification report of a :class:`~.diagnosis.Diagnosis`."""
+
+from __future__ import annotations
+
+import math
+
+from .diagnosis import Diagnosis
+from .effects import param_spec, unit_of
+from .fitting import FitResult
+
+
+def _clean(value):
+    if value is None:
+        return None
+    value = float(value)
+    return value if math.isfinite(value) else None
+
+
+def is_rotary(data) -> bool:
+    """Rotary data: ``# units: rotary`` (or forces in N·m / positions in rad in the
+    column headers, recorded by the parser as the same metadata)."""
+    return data.meta.get("units", "").strip().lower() == "rotary"
+
+
+def units(data) -> dict[str, str]:
+    """Units of the data's columns and of every parameter key, linear or rotary."""
+    rotary = is_rotary(data)
+    columns = {"F": "N", "F_ba": "N", "x": "m", "v": "m/s", "t": "s", "k": "N/s",
+               "dwell": "s", "a": "m/s²"}
+    out = {name: unit_of(u, rotary) for name, u in columns.items()}
+    if rotary:
+        out["k"] = "N·m/s"
+    return out
+
+
+def model_entry(fit: FitResult) -> dict:
+    """``params``, ``stderr``, ``determined``, ``rmse``, ``bic`` of one model."""
+    return {"params": {k: _clean(v) for k, v in fit.params.items()},
+            "stderr": {k: _clean(fit.stderr.get(k)) for k in fit.params},
+            "determined": {k: bool(fit.determined.get(k, False)) for k in fit.params},
+            "rmse": _clean(fit.rmse), "bic": _clean(fit.bic)}
+
+
+def parameter_units(data, names) -> dict[str, str]:
+    rotary = is_rotary(data)
+    return {name: unit_of(param_spec(name).unit, rotary) for name in names}
+
+
+def report(diagnosis: Diagnosis) -> dict:
+    """The §8 identification report as a JSON-ready dict.
+
+    Besides the §8 keys: each step's held-out error ``heldout``; ``units`` (of the
+    columns and of every parameter, linear or rotary); ``noise_method`` (how the floor
+    was estimated); ``screened_rows`` (rows of the decimated copy the candidates were
+    screened on, 0 when every row was used) and ``seconds`` (wall time).
+    """
+    d = diagnosis
+    return {
+        "kind": d.data.kind,
+        "n": d.data.n,
+        "noise_floor": _clean(d.noise.value),
+        "noise_method": d.noise.method,
+        "base": model_entry(d.base),
+        "steps": [{"effect": s.effect, **model_entry(s.fit), "evidence": s.evidence,
+                   "heldout": _clean(s.heldout)} for s in d.steps],
+        "effects": d.effects,
+        "final": model_entry(d.final),
+        "error_before": _clean(d.base.rmse),
+        "error_after": _clean(d.final.rmse),
+        "heldout": {"before": _clean(d.heldout_before), "after": _clean(d.heldout_after)},
+        "residual_white": bool(d.white),
+        "unexplained": bool(d.unexplained),
+        "warnings": list(d.warnings),
+        "residual_structure": list(d.structure),
+        "candidates": {e: {"rmse": _clean(c.rmse), "bic": _clean(c.bic),
+                           "heldout": _clean(c.heldout), "accepted": bool(c.accepted),
+                           "reason": c.reason}
+                       for e, c in d.candidates.items()},
+        "units": {**units(d.data),
+                  **parameter_units(d.data, list(d.base.params) + list(d.final.params))},
+        "screened_rows": d.screened_rows,
+        "seconds": round(d.seconds, 3),
+    }
+
+
+__all__ = ["model_entry", "report", "units"]
