@@ -13,6 +13,8 @@ import pytest
 from breakaway.identify import EFFECTS, diagnose, report
 from breakaway.identify.synthetic import NOISE, make_dataset, make_filtered_channel
 
+from .test_honesty import assert_honest_uncertainties
+
 #: Shorter timeseries than the 20,000-sample default keep the suite quick.
 N_TIMESERIES = 10_000
 
@@ -22,7 +24,9 @@ SINGLE = [(kind, effect) for effect, spec in EFFECTS.items() for kind in spec.ki
 def _report(kind, effects=(), seed=0, **kwargs):
     n = N_TIMESERIES if kind == "timeseries" else None
     data, truth = make_dataset(kind, effects, seed=seed, n=n, **kwargs)
-    return report(diagnose(data)), truth
+    result = report(diagnose(data))
+    assert_honest_uncertainties(result)
+    return result, truth
 
 
 def test_every_effect_and_kind_is_covered():

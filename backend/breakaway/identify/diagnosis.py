@@ -29,7 +29,8 @@ import numpy as np
 from threadpoolctl import threadpool_limits
 
 from .csvdata import MIN_ROWS, Dataset
-from .effects import EFFECTS, availability, viscous_equivalent_of_detection
+from .effects import (EFFECTS, MIN_RIPPLE_PERIODS, availability, long_wavelength,
+                      viscous_equivalent_of_detection)
 from .fitting import FitError, FitResult, best_base_starts, fit_model, fit_with_effect, refit
 from .models import problem_for
 from .noise import NoiseFloor, command_floor, estimate
@@ -206,6 +207,10 @@ class _Loop:
         while remaining and not self.white(current):
             trials = {}
             for i, effect in enumerate(remaining):
+                refused = EFFECTS[effect].refuse(current.problem, current.residual())
+                if refused:
+                    self.verdicts[effect] = Candidate(reason=refused)
+                    continue
                 self.report(min(0.9, 0.1 + 0.8 * (len(self.steps) + i / total) / total),
                             f"trying {effect}")
                 trial = self.try_effect(current, effect)
@@ -387,7 +392,9 @@ def _diagnose(data: Dataset, progress) -> Diagnosis:
         base = refit(data, base, max_nfev=20 * (len(base.problem.names) + 1))
     command = command_floor(full_problem, noise, base.residual())
     if command is not None:
-        noise = command
+        noise = command  # the residual's differences already carry the noise of x
+    elif data.kind == "timeseries":
+        noise = noise.with_position_part(base.problem.resolution_noise(base.params))
     warnings += _data_warnings(full_problem, noise)
     report(0.1, "screening candidate effects")
 
@@ -440,9 +447,12 @@ def _data_warnings(problem, noise: NoiseFloor) -> list[dict]:
     out = []
     q_x = getattr(problem, "quantum_x", 0.0)
     if q_x > 0:
+        part = (f"; through the model they add {noise.from_x:.3g} N to the noise floor"
+                if noise.from_x > 0 else "")
         out.append(warning("quantised", "x", (
             f"x takes steps of {q_x:.4g}: direction changes of up to {problem.hysteresis:.4g} "
-            f"(3 steps) are not reversals, and v is taken over a window of several samples")))
+            f"(3 steps) are not reversals, and v is taken over a window of several "
+            f"samples{part}")))
     if noise.quantum_F > 0:
         floor = noise.quantum_F / math.sqrt(12)
         column = "F_ba" if problem.kind == "breakaway" else "F"
@@ -452,8 +462,9 @@ def _data_warnings(problem, noise: NoiseFloor) -> list[dict]:
     if noise.command:
         out.append(warning("force-is-command", "F", (
             f"the force column is noise-free (differences estimate {noise.smooth_F:.3g} N): "
-            f"it is a command and the measurement noise sits in x; the noise floor "
-            f"{noise.value:.4g} N is that of the base model's residual")))
+            f"it is a command and the measurement noise sits in x (std about "
+            f"{getattr(problem, 'noise_x', 0.0):.3g}); the noise floor {noise.value:.4g} N is "
+            f"that of the base model's residual")))
     counts = problem.direction_counts()
     if counts is not None and problem.kind != "breakaway":
         pos, neg, total = counts
@@ -511,23 +522,13 @@ def _fit_warnings(fit: FitResult) -> list[dict]:
 def _travel_warnings(fit: FitResult, structure: list[dict]) -> list[dict]:
     """``short-travel``: the residual depends on x at a scale the travel cannot hold
     twice, so ``ripple`` was not tried there."""
-    if fit.problem.kind != "timeseries" or not structure:
+    if fit.problem.kind != "timeseries" or not structure or "ripple" in fit.effects:
         return []
     strength = {s["against"]: s["strength"] for s in structure}.get("x", 0.0)
-    if strength < 0.1 or "ripple" in fit.effects:
+    lam = long_wavelength(fit.problem, fit.residual())
+    if strength < 0.1 or lam is None:
         return []
-    from .effects import MIN_RIPPLE_PERIODS, periodogram
-
-    problem = fit.problem
-    travel = problem.scales.travel
-    short = np.geomspace(max(4 * problem.scales.step, travel / 2000), travel / MIN_RIPPLE_PERIODS, 200)
-    long = np.geomspace(travel / MIN_RIPPLE_PERIODS, 4 * travel, 60)
-    r = fit.residual()
-    p_short = periodogram(problem.x, r, short).max()
-    p_long = periodogram(problem.x, r, long)
-    if p_long.max() <= p_short:
-        return []
-    lam = long[int(np.argmax(p_long))]
+    travel = fit.problem.scales.travel
     return [warning("short-travel", None, (
         f"the residual depends on x ({100 * strength:.0f} % of its variance), most strongly "
         f"at a wavelength of about {lam:.3g} over a travel of {travel:.3g}: the travel holds "

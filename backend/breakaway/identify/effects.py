@@ -145,6 +145,10 @@ class Effect:
         """Why the data cannot show this effect (None: it can be tried)."""
         return None
 
+    def refuse(self, pb, residual) -> str | None:
+        """Why the current residual rules the effect out this round (None: try it)."""
+        return None
+
     def starts(self, pb, current: dict, residual) -> list[dict]:
         """Starting values of the effect's parameters, read off the current residual."""
         raise NotImplementedError
@@ -351,6 +355,14 @@ class Ripple(Effect):
     def sensor(self, pb, p, F, ctx):
         return F + p["A"] * np.sin(2 * np.pi * pb.x / p["wavelength"] + p["phase"])
 
+    def refuse(self, pb, residual):
+        lam = long_wavelength(pb, residual)
+        if lam is None:
+            return None
+        return (f"short-travel: the residual's dependence on x is strongest at a wavelength "
+                f"of about {lam:.3g}, but the travel ({pb.scales.travel:.3g}) holds fewer "
+                f"than {MIN_RIPPLE_PERIODS:g} such periods")
+
     def starts(self, pb, current, r):
         """Wavelengths of the strongest periodogram peaks of the residual against x."""
         x = pb.x
@@ -380,6 +392,18 @@ class Ripple(Effect):
         c = math.hypot(_corr(r, np.sin(phase)), _corr(r, np.cos(phase)))
         return (f"the residual is periodic in x with wavelength {_fmt(lam)} m "
                 f"(correlation {c:.2f} with a sinusoid of x)")
+
+
+def long_wavelength(pb, r):
+    """The wavelength at which ``r`` depends most on x when that is too long for the
+    travel to hold two periods (else None)."""
+    travel, step = pb.scales.travel, pb.scales.step
+    short = np.geomspace(max(4 * step, travel / 2000), travel / MIN_RIPPLE_PERIODS, 200)
+    long = np.geomspace(travel / MIN_RIPPLE_PERIODS, 4 * travel, 60)
+    p_long = periodogram(pb.x, r, long)
+    if p_long.max() <= periodogram(pb.x, r, short).max():
+        return None
+    return float(long[int(np.argmax(p_long))])
 
 
 def periodogram(x, r, wavelengths):
@@ -491,7 +515,7 @@ class Backlash(Effect):
     def body_motion(self, pb, p, ctx):
         if p["play"] <= 0:
             return ctx
-        xc, engaged = play_operator(pb.x, p["play"])
+        xc, engaged = play_operator(ctx["x"], p["play"])
         return {**ctx, "x": xc, "v": pb.kinematic_velocity(xc), "d": pb.kinematic_direction(xc),
                 "engaged": engaged}
 
@@ -599,5 +623,5 @@ def param_spec(name: str) -> Param:
 
 
 __all__ = ["availability", "BASE_PARAMS", "BREAKAWAY_Z", "DELTA_BOUNDS", "EFFECTS", "Effect", "Param",
-           "effects_for", "engaged_presliding", "lag_filter", "param_spec", "periodogram",
+           "effects_for", "engaged_presliding", "lag_filter", "long_wavelength", "param_spec", "periodogram",
            "play_operator", "unit_of", "viscous_equivalent_of_detection"]

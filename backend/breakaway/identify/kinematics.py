@@ -6,8 +6,9 @@ one count of jitter at rest into a reversal and a velocity spike. So:
 - :func:`quantum` detects the step ``q`` of a column (0 when it takes no fixed steps);
 - :func:`direction` treats a direction change smaller than ``h`` as no reversal (a
   Schmitt trigger on the running extreme); with ``h = 0`` it *is* MODEL.md §3's rule;
-- :func:`velocity` differentiates x after a moving average just long enough that a
-  typical stroke covers several counts (plain ``gradient`` when ``q = 0``).
+- :func:`position_noise` estimates the noise of x, where there is any to speak of;
+- :func:`velocity` takes each sample's slope over a window just wide enough that x
+  moves several resolutions in it (plain ``gradient`` when x is exact).
 """
 
 from __future__ import annotations
@@ -16,7 +17,6 @@ import math
 
 import numpy as np
 from numba import njit
-from scipy.ndimage import uniform_filter1d
 
 from ..presliding import motion_direction
 
@@ -122,29 +122,74 @@ def direction(x, h: float = 0.0):
     return _direction_kernel(x, float(h))
 
 
-def velocity(t, x, q: float = 0.0):
+def position_noise(x) -> float:
+    """Noise std of a position record [m], or 0 where it is negligible.
+
+    Robust (MAD) third differences (``std = σ·√20`` for white noise). Counted only when
+    it is at least 5 % of the typical sample-to-sample change: the curvature of a clean,
+    finely sampled record gives a far smaller value.
+    """
+    x = np.asanyarray(x, dtype=float)
+    if x.size < 8:
+        return 0.0
+    sigma = 1.4826 * float(np.median(np.abs(np.diff(x, 3)))) / math.sqrt(20)
+    changes = np.abs(np.diff(x))
+    changes = changes[changes > 0]
+    typical = float(np.median(changes)) if changes.size else 0.0
+    return sigma if sigma >= _QUANTUM_SHARE * typical and sigma > 0 else 0.0
+
+
+#: An adaptive window spans at least this many resolutions of x ...
+WINDOW_RESOLUTIONS = 8
+#: ... and at most this many samples on each side.
+MAX_HALF_WINDOW = 100
+
+
+@njit(cache=True)
+def _adaptive_velocity(t, x, span, max_half):
+    n = x.size
+    v = np.empty(n)
+    for i in range(n):
+        w = 1
+        while True:
+            lo = max(i - w, 0)
+            hi = min(i + w, n - 1)
+            if abs(x[hi] - x[lo]) >= span or w >= max_half or (lo == 0 and hi == n - 1):
+                break
+            w += 1
+        # least-squares slope over the window: the counts' ±q/2 errors average out
+        # where an end-to-end difference would keep two of them
+        tm = 0.0
+        xm = 0.0
+        for j in range(lo, hi + 1):
+            tm += t[j]
+            xm += x[j]
+        tm /= hi - lo + 1
+        xm /= hi - lo + 1
+        num = 0.0
+        den = 0.0
+        for j in range(lo, hi + 1):
+            num += (t[j] - tm) * (x[j] - xm)
+            den += (t[j] - tm) ** 2
+        v[i] = num / den
+    return v
+
+
+def velocity(t, x, resolution: float = 0.0):
     """Velocity of a position record [m/s].
 
-    ``gradient(x, t)`` (MODEL.md §3) when ``q = 0``. For a quantised record, x is first
-    averaged over a centred window long enough that a typical stroke moves about
-    four counts in it (5 … 201 samples), so one count is not a spike.
+    ``gradient(x, t)`` (MODEL.md §3) when x is exact (``resolution = 0``). For an
+    encoder's steps or a noisy x, each sample's velocity is the slope over the
+    narrowest centred window in which x moves by at least
+    :data:`WINDOW_RESOLUTIONS` resolutions (at most :data:`MAX_HALF_WINDOW` samples on
+    each side): fast motion keeps its detail, slow motion is timed over several counts
+    instead of showing one count as a spike, and jitter at rest averages out.
     """
-    t = np.asanyarray(t, dtype=float)
-    x = np.asanyarray(x, dtype=float)
-    if q <= 0 or x.size < 5:
+    t = np.ascontiguousarray(t, dtype=float)
+    x = np.ascontiguousarray(x, dtype=float)
+    if x.size < 5 or resolution <= 0:
         return np.gradient(x, t)
-    return np.gradient(uniform_filter1d(x, smoothing_window(t, x, q), mode="nearest"), t)
+    return _adaptive_velocity(t, x, WINDOW_RESOLUTIONS * resolution, MAX_HALF_WINDOW)
 
 
-def smoothing_window(t, x, q: float) -> int:
-    """Odd window [samples] over which a typical stroke moves about four counts ``q``."""
-    dt = float(np.median(np.diff(t)))
-    lag = min(25, x.size - 1)
-    speed = float(np.percentile(np.abs(x[lag:] - x[:-lag]), 90)) / (lag * dt)
-    if not speed > 0:
-        return 5
-    half = math.ceil(2.0 * q / (speed * dt))
-    return int(np.clip(2 * half + 1, 5, min(201, x.size - (x.size + 1) % 2)))
-
-
-__all__ = ["REVERSAL_STEPS", "direction", "quantum", "smoothing_window", "velocity"]
+__all__ = ["REVERSAL_STEPS", "direction", "position_noise", "quantum", "velocity"]

@@ -46,6 +46,16 @@ class NoiseFloor:
     smooth_F: float = math.nan
     replicated_rows: int = 0
     command: bool = False
+    from_x: float = 0.0  # the part the resolution of x adds through the model [N]
+
+    def with_position_part(self, from_x: float) -> "NoiseFloor":
+        """The floor with the force error that the resolution of x causes added in
+        quadrature (an encoder's ±q/2, a noisy x's std, propagated by the model)."""
+        if not from_x > 0:
+            return self
+        value = math.sqrt(self.value**2 + from_x**2)
+        return NoiseFloor(value, self.method + " + resolution of x", self.quantum_F,
+                          self.smooth_F, self.replicated_rows, self.command, from_x)
 
 
 def _replicate_sigma(F, keys, nuisance=None):

@@ -11,7 +11,7 @@ from .noise import orderings
 #: Variables with at most this many distinct values are grouped by value, not binned.
 _MAX_LEVELS = 50
 #: Rows per bin of a continuous variable (5 … 50 bins).
-_ROWS_PER_BIN = 50
+_ROWS_PER_BIN = 8
 
 
 def smoothness_statistic(residual, problem) -> tuple[float, float]:

@@ -1,0 +1,168 @@
+"""Issue 9: the report is honest on the data classes where the first engine was
+confidently wrong. Each case is made by seeded code in :mod:`tests.identify.cases`."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import pytest
+
+from breakaway.identify import identify, read_csv
+from breakaway.identify.samples import SAMPLES
+from breakaway.identify.csvdata import parse_csv
+
+from . import cases
+
+
+def codes(report, parameter=...):
+    return {w["code"] for w in report["warnings"]
+            if parameter is ... or w["parameter"] == parameter}
+
+
+def assert_honest_uncertainties(report):
+    """MODEL.md §8 on every model entry: stderr and determined for every parameter, no
+    standard error below 1e-9 of its value, nothing on a bound reported as determined."""
+    on_bound = {w["parameter"] for w in report["warnings"] if w["code"] == "at-bound"}
+    for entry in [report["base"], report["final"], *report["steps"]]:
+        assert set(entry["stderr"]) == set(entry["params"]) == set(entry["determined"])
+        for name, value in entry["params"].items():
+            se = entry["stderr"][name]
+            if se is not None and value:
+                assert se >= 1e-9 * abs(value), (name, value, se)
+    for name in on_bound:
+        assert report["final"]["determined"][name] is False, name
+    for effect, verdict in report["candidates"].items():
+        assert verdict["accepted"] == (effect in report["effects"])
+        assert (verdict["reason"] is None) == verdict["accepted"], effect
+
+
+@pytest.fixture(scope="module")
+def reports():
+    made = {}
+
+    def get(name, **kwargs):
+        key = (name, tuple(sorted(kwargs.items())))
+        if key not in made:
+            data, truth = getattr(cases, name)(**kwargs)
+            made[key] = identify(data), truth
+        return made[key]
+    return get
+
+
+def test_repeats_set_the_noise_floor(reports):
+    report, truth = reports("repeated_breakaway")
+    assert report["noise_method"] == "replicates"
+    assert truth["noise"] / 1.6 <= report["noise_floor"] <= 1.6 * truth["noise"]
+    assert report["effects"] == []
+    assert report["unexplained"] is False
+    assert "quantised" in codes(report, "F_ba")
+    assert_honest_uncertainties(report)
+
+
+def test_a_single_rate_determines_only_the_level(reports):
+    report, truth = reports("single_rate_breakaway")
+    assert "single-rate" in codes(report)
+    final = report["final"]
+    assert final["determined"] == {"Fc": False, "Fs": True, "V": False, "delta": False}
+    assert final["stderr"]["V"] is None and final["stderr"]["delta"] is None
+    assert final["params"]["Fs"] == pytest.approx(truth["level"], abs=0.02)
+    assert 0 < final["stderr"]["Fs"] < 0.01
+    assert report["effects"] == []
+    for name in ("viscous", "inertia", "detection"):
+        assert report["candidates"][name]["reason"].startswith("single-rate")
+    assert_honest_uncertainties(report)
+
+
+def test_detection_not_viscous_when_no_s_is_given(reports):
+    report, truth = reports("detection_joint")
+    assert report["effects"] == ["detection"]
+    assert report["final"]["params"]["tau_det"] == pytest.approx(truth["tau_det"], rel=0.25)
+    assert "indistinguishable" in codes(report, "viscous")
+    other = next(w for w in report["warnings"] if w["code"] == "indistinguishable")
+    assert "σ =" in other["message"]
+    assert report["candidates"]["viscous"]["reason"].startswith("indistinguishable")
+    assert report["units"]["F_ba"] == "N·m" and report["units"]["tau_det"] == "s"
+    assert_honest_uncertainties(report)
+
+
+def test_viscous_named_when_the_file_gives_s():
+    data, truth = cases.detection_joint()
+    with_s = cases.dataset("breakaway", data.columns, {"s": "1"})
+    report = identify(with_s)
+    assert report["effects"] == ["viscous"]
+    assert "indistinguishable" in codes(report, "detection")
+
+
+def test_one_direction_tries_neither_offset_nor_asymmetry(reports):
+    report, _ = reports("one_direction")
+    assert "one-direction" in codes(report)
+    assert report["effects"] == []
+    for name in ("offset", "asymmetry"):
+        assert report["candidates"][name]["reason"].startswith("one-direction")
+    assert_honest_uncertainties(report)
+
+
+def test_encoder_counts_are_not_reversals(reports):
+    report, truth = reports("encoder_record")
+    assert "quantised" in codes(report, "x")
+    assert report["effects"] == []
+    assert report["unexplained"] is False
+    assert_honest_uncertainties(report)
+
+
+def test_a_commanded_force_has_a_real_noise_floor(reports):
+    report, _ = reports("force_command")
+    assert "force-is-command" in codes(report, "F")
+    assert report["noise_floor"] > 0.01  # the noise of x, seen through the model [N]
+    assert report["effects"] == []
+    for name in ("Fc", "Fs"):
+        assert report["final"]["params"][name] == pytest.approx({"Fc": 10, "Fs": 15}[name], rel=0.05)
+    assert_honest_uncertainties(report)
+
+
+def test_no_ripple_longer_than_the_travel_allows(reports):
+    report, truth = reports("long_ripple")
+    assert "ripple" not in report["effects"]
+    assert "short-travel" in codes(report)
+    assert report["candidates"]["ripple"]["reason"].startswith("short-travel")
+    strength = {s["against"]: s["strength"] for s in report["residual_structure"]}
+    assert strength["x"] >= 0.3
+    assert_honest_uncertainties(report)
+
+
+def test_rows_at_rest_are_dropped_with_a_warning(reports):
+    report, truth = reports("steady_with_rest_rows")
+    assert report["n"] == 120
+    dropped = next(w for w in report["warnings"] if w["code"] == "dropped-rows")
+    assert dropped["message"].startswith(f"{truth['rest']} of 126 rows")
+    assert report["effects"] == []
+
+
+def test_friction_rising_at_low_speed_is_flagged(reports):
+    report, _ = reports("strengthening_steady")
+    assert "at-bound" in codes(report, "Fs")
+    assert report["final"]["determined"]["Fs"] is False
+    assert report["final"]["determined"]["V"] is False
+    assert_honest_uncertainties(report)
+
+
+def test_an_effect_outside_the_library_is_traced_to_its_variable(reports):
+    report, _ = reports("quadratic_drag")
+    assert report["unexplained"] is True
+    top = report["residual_structure"][0]
+    assert top["against"] == "v" and top["strength"] >= 0.2
+
+
+def test_white_residual_has_no_structure(reports):
+    report, _ = reports("repeated_breakaway")
+    assert report["residual_white"] is True
+    assert report["residual_structure"] == []
+
+
+def test_damper_sample_reports_nothing_determined_on_a_bound():
+    report = identify(parse_csv(SAMPLES["damper"].csv()))
+    assert_honest_uncertainties(report)
+    for w in report["warnings"]:
+        if w["code"] == "at-bound":
+            assert report["final"]["determined"][w["parameter"]] is False
