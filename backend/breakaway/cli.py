@@ -27,7 +27,7 @@ def _fit(args: argparse.Namespace) -> int:
 
     try:
         data = read_csv(args.file, kind=args.kind)
-        result = identify(data)
+        result = identify(data, progress=_progress_line(data.n))
     except (DataError, FitError) as err:
         print(f"breakaway fit: {args.file}: {err}", file=sys.stderr)
         return 2
@@ -36,6 +36,32 @@ def _fit(args: argparse.Namespace) -> int:
     else:
         print(format_report(result, source=args.file), end="")
     return 0
+
+
+#: Fits of at least this many rows print a progress line on stderr.
+PROGRESS_ROWS = 50_000
+
+
+def _progress_line(rows: int):
+    """A progress callback for long fits: one updating line on a terminal, one line per
+    stage otherwise (logs); None for short fits."""
+    if rows < PROGRESS_ROWS:
+        return None
+    import time
+
+    started = time.perf_counter()
+    tty = sys.stderr.isatty()
+    last = [None]
+
+    def show(fraction: float, message: str) -> None:
+        text = f"breakaway fit: {100 * fraction:3.0f} % {message} ({time.perf_counter() - started:.1f} s)"
+        if tty:
+            end = "\n" if fraction >= 1 else ""
+            print(f"\r{text:<79}", end=end, file=sys.stderr, flush=True)
+        elif message.split()[0] != last[0]:
+            print(text, file=sys.stderr, flush=True)
+        last[0] = message.split()[0]
+    return show
 
 
 def build_parser() -> argparse.ArgumentParser:

@@ -7,12 +7,18 @@ import numpy as np
 from .params import check_stribeck
 
 
-def stribeck_kernel(v, Fc, Fs, V, delta):
+def stribeck_kernel(v, Fc, Fs, V, delta, log_speed=None):
     """g(v) of (E2) without argument checks, for fits that move the parameters.
 
     Same formula as :func:`stribeck_magnitude`; ``Fc`` and ``Fs`` may be arrays (per-row
     levels, e.g. separate levels per direction). Overflow gives the limits, not warnings.
+    A fit that evaluates g at the same velocities many times may pass
+    ``log_speed = log|v|`` (−inf at rest): ``(|v|/V)^δ = exp(δ·(log|v| − log V))`` then
+    costs two exponentials instead of a power.
     """
+    if log_speed is not None and delta > 0:
+        with np.errstate(over="ignore"):
+            return Fc + (Fs - Fc) * np.exp(-np.exp(delta * (log_speed - np.log(V))))
     v = np.abs(np.asanyarray(v, dtype=float))
     with np.errstate(divide="ignore", over="ignore"):
         # (|v|/V)^δ: at v = 0 this is 0 for δ > 0 and +inf for δ < 0, which gives the

@@ -126,6 +126,9 @@ class Dataset:
         int64, the 1-based file line of each data row (for messages downstream).
     meta_lines : dict of str to int
         The 1-based file line of each ``meta`` key (for :meth:`meta_float` messages).
+    segments : tuple of int
+        Row indices where an independent record starts after the first (a time series
+        screened in blocks); empty for a file.
     """
 
     kind: str
@@ -135,6 +138,7 @@ class Dataset:
     ignored_columns: tuple[str, ...]
     lines: np.ndarray
     meta_lines: dict[str, int] = field(default_factory=dict, repr=False)
+    segments: tuple[int, ...] = ()
 
     def meta_float(self, key: str, default: float | None = None) -> float | None:
         """Numeric value of a metadata line.

@@ -14,9 +14,9 @@
    one for a candidate that explains the data better (held-out error decides).
 4. ``residual_white``, ``unexplained``, ``residual_structure`` and the warnings.
 
-Long time series are screened on an evenly decimated copy (every m-th row keeps the
-noise level and the time structure); the base and final models are then refitted on
-every row.
+Long time series are screened on contiguous blocks spread over the record (each at the
+full sampling rate, so reversals and velocities stay resolved); the base and final
+models are then refitted on every row.
 """
 
 from __future__ import annotations
@@ -47,6 +47,11 @@ MIN_RMSE_GAIN = 0.01
 UNEXPLAINED_RATIO = 1.3
 #: Time series longer than this are screened on a decimated copy of about this size.
 SCREEN_ROWS = 20_000
+#: Function evaluations (each with a finite-difference Jacobian) of a refit on every row
+#: from the screened solution: it only polishes.
+FULL_REFIT_EVALUATIONS = 8
+#: ... in this many contiguous blocks.
+SCREEN_BLOCKS = 8
 #: Candidates (by BIC) combined in pairs when no single effect passes.
 PAIR_CANDIDATES = 3
 
@@ -104,12 +109,42 @@ def warning(code: str, parameter: str | None, message: str) -> dict:
 # ---------------------------------------------------------------------------------
 
 
-def subset(data: Dataset, rows) -> Dataset:
+def subset(data: Dataset, rows, segments=()) -> Dataset:
     """The same dataset restricted to ``rows`` (indices, in order)."""
     rows = np.asarray(rows)
     return Dataset(kind=data.kind, columns={k: v[rows] for k, v in data.columns.items()},
                    meta=data.meta, n=int(rows.size), ignored_columns=data.ignored_columns,
-                   lines=data.lines[rows], meta_lines=data.meta_lines)
+                   lines=data.lines[rows], meta_lines=data.meta_lines,
+                   segments=tuple(segments))
+
+
+def screening_blocks(data: Dataset, directions=None, rows: int = None,
+                     count: int = None) -> Dataset:
+    """:data:`SCREEN_BLOCKS` contiguous blocks spread evenly over a long time series,
+    :data:`SCREEN_ROWS` rows in all, as independent records: each keeps the full
+    sampling (reversals, presliding and velocity stay resolved) and together they
+    span the whole duration (a drift stays visible). Given the record's
+    ``directions``, each block starts at a motion reversal, where (E6')'s state is
+    known: x_r and F_r are the block's first position and measured force."""
+    rows = rows or SCREEN_ROWS
+    count = count or SCREEN_BLOCKS
+    length = rows // count
+    starts = np.linspace(0, data.n - length, count).astype(int)
+    if directions is not None:
+        turns = np.flatnonzero(np.diff(directions) != 0)  # the sample before a reversal
+        turns = turns[turns <= data.n - length]
+        if turns.size:
+            at = np.searchsorted(turns, starts[1:])
+            starts[1:] = turns[np.minimum(at, turns.size - 1)]
+            starts = np.unique(starts)
+            # blocks may not overlap: keep the ones that fit after their predecessor
+            kept = [starts[0]]
+            for a in starts[1:]:
+                if a >= kept[-1] + length:
+                    kept.append(a)
+            starts = np.array(kept)
+    index = np.concatenate([np.arange(a, a + length) for a in starts])
+    return subset(data, index, segments=[i * length for i in range(1, starts.size)])
 
 
 def prepare(data: Dataset) -> tuple[Dataset, list[dict]]:
@@ -186,6 +221,8 @@ class _Loop:
         self.warnings: list[dict] = []
         self.steps: list[Step] = []
         self.settled: set[str] = set()  # named away by MODEL.md §7's rule
+        #: effects that came within MIN_BIC_DROP of an accepted one in its round
+        self.rivals: set[str] = set()
 
     def heldout(self, fit: FitResult) -> float:
         return _heldout_error(self.data, fit, self.train, self.test)
@@ -252,6 +289,8 @@ class _Loop:
             heldout = self.heldout(trial)
             self.verdicts[effect].heldout = heldout
             if heldout < current_heldout:
+                self.rivals |= {e for e, t in trials.items()
+                                if e != effect and t.bic <= trial.bic + MIN_BIC_DROP}
                 return [(effect, trial, heldout, self._evidence(effect, current, trial))]
             self.verdicts[effect].reason = (f"the held-out error rises from "
                                             f"{current_heldout:.4g} to {heldout:.4g} N")
@@ -335,11 +374,11 @@ class _Loop:
         return current, current_heldout
 
     def swap(self, current, current_heldout, available):
-        """Swap an accepted effect for a rejected candidate that explains the data
-        better (a forward step can take a stand-in for the true effect)."""
-        rejected = [e for e in available if e not in current.effects
-                    and self.verdicts.get(e, Candidate()).bic is not None
-                    and self.verdicts[e].bic < current.bic + 10 * MIN_BIC_DROP]
+        """Swap an accepted effect for a rival (a candidate that came close to an
+        accepted one in its round) when the swap explains the data better: a forward
+        step can take a stand-in for the true effect."""
+        rejected = [e for e in available if e not in current.effects and e in self.rivals
+                    and e not in self.settled]
         for effect in list(current.effects):
             for candidate in rejected:
                 others = tuple(e for e in current.effects if e != effect)
@@ -383,13 +422,12 @@ def _diagnose(data: Dataset, progress) -> Diagnosis:
     report(0.0, "fitting the base model")
     data, warnings = prepare(data)
     screened = data.kind == "timeseries" and data.n > 1.5 * SCREEN_ROWS
-    screen = subset(data, np.arange(0, data.n, math.ceil(data.n / SCREEN_ROWS))) \
-        if screened else data
-    base = fit_model(screen)
     full_problem = problem_for(data)
+    screen = screening_blocks(data, full_problem.d) if screened else data
+    base = fit_model(screen)
     noise = estimate(full_problem)
     if screened:
-        base = refit(data, base, max_nfev=20 * (len(base.problem.names) + 1))
+        base = refit(data, base, max_nfev=FULL_REFIT_EVALUATIONS)
     command = command_floor(full_problem, noise, base.residual())
     if command is not None:
         noise = command  # the residual's differences already carry the noise of x
@@ -415,7 +453,7 @@ def _diagnose(data: Dataset, progress) -> Diagnosis:
     steps = [s for s in loop.steps if s.effect in current.effects]
     if screened:
         report(0.92, "refitting the chosen model on every row")
-        final = refit(data, current, max_nfev=20 * (len(current.problem.names) + 1)) \
+        final = refit(data, current, max_nfev=FULL_REFIT_EVALUATIONS) \
             if current.effects else base
         steps = [Step(s.effect, final if s.fit is current else _evaluate(data, s.fit),
                       s.evidence, s.heldout) for s in steps]

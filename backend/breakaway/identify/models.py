@@ -12,6 +12,7 @@ in a fixed order. :func:`problem_for` picks the class for a dataset.
 from __future__ import annotations
 
 import math
+import weakref
 from dataclasses import dataclass
 
 import numpy as np
@@ -26,6 +27,8 @@ from .effects import BREAKAWAY_Z, EFFECTS, engaged_presliding, param_spec
 from .kinematics import REVERSAL_STEPS, direction, position_noise, quantum, velocity
 
 
+#: Kinematics per dataset (a fit builds many problems on one record).
+_KINEMATICS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
 #: Samples averaged before the direction of a noisy x is read.
 NOISY_X_WINDOW = 21
 
@@ -175,37 +178,65 @@ class TimeseriesProblem(Problem):
         cols = data.columns
         self.t, self.x = cols["t"], cols["x"]
         self.measured = cols["F"]
+        #: independent records (blocks of a screened series): [start, stop) pairs
+        edges = [0, *data.segments, data.n]
+        self.blocks = list(zip(edges[:-1], edges[1:]))
+        self.F0 = data.meta_float("f0", 0.0)
+        cached = _KINEMATICS.get(data)
+        if cached is None:
+            cached = _KINEMATICS[data] = self._kinematics()
+        self.__dict__.update(cached)
+        super().__init__(data, effects, fixed)
+
+    def _kinematics(self) -> dict:
+        """What every model of this record shares; computed once per dataset."""
         #: quantisation step and noise std of x (0: none), its resolution, and the
         #: reversal hysteresis: direction changes within a few resolutions are not real
         self.quantum_x = quantum(self.x)
         self.noise_x = position_noise(self.x) if self.quantum_x == 0 else 0.0
         self.resolution_x = max(self.quantum_x, self.noise_x)
         self.hysteresis = REVERSAL_STEPS * self.resolution_x
-        self.v = self.kinematic_velocity(self.x)
-        self.a = np.gradient(self.v, self.t)
-        self.d = self.kinematic_direction(self.x)
-        self.F0 = data.meta_float("f0", 0.0)
+        v = self.kinematic_velocity(self.x)
+        with np.errstate(divide="ignore"):
+            log_speed = np.log(np.abs(v))  # g's argument, reused by every evaluation
+        a = np.concatenate([np.gradient(v[i:j], self.t[i:j]) for i, j in self.blocks])
         steps = np.abs(np.diff(self.x))
         moving = steps[steps > 0]
-        self.scales = Scales(
+        scales = Scales(
             force=_robust_scale(self.measured),
-            speed=_robust_scale(self.v),
+            speed=_robust_scale(v),
             travel=float(np.ptp(self.x)) or 1.0,
             duration=float(self.t[-1] - self.t[0]) or 1.0,
-            accel=_robust_scale(self.a),
+            accel=_robust_scale(a),
             step=max(float(np.median(moving)) if moving.size else 1.0, self.quantum_x),
         )
-        super().__init__(data, effects, fixed)
+        return {"quantum_x": self.quantum_x, "noise_x": self.noise_x,
+                "resolution_x": self.resolution_x, "hysteresis": self.hysteresis, "v": v,
+                "log_speed": log_speed, "a": a, "d": self.kinematic_direction(self.x),
+                "scales": scales}
 
     def kinematic_velocity(self, x):
-        return velocity(self.t, x, self.resolution_x)
+        return np.concatenate([velocity(self.t[a:b], x[a:b], self.resolution_x)
+                               for a, b in self.blocks])
 
     def kinematic_direction(self, x):
         if self.noise_x > 0:
             # Gaussian noise has no largest excursion: the trigger runs on x averaged
             # over 21 samples, where the noise std is 4.6× smaller than the hysteresis'
-            return direction(uniform_filter1d(x, NOISY_X_WINDOW, mode="nearest"), self.hysteresis)
-        return direction(x, self.hysteresis)
+            x = uniform_filter1d(x, NOISY_X_WINDOW, mode="nearest")
+        return np.concatenate([direction(x[a:b], self.hysteresis) for a, b in self.blocks])
+
+    def _presliding(self, ctx, target, s):
+        """(E6') block by block; a later block starts from its measured force."""
+        out = np.empty(self.x.size)
+        for a, b in self.blocks:
+            F0 = self.F0 if a == 0 else float(self.measured[a])
+            x, d = ctx["x"][a:b], ctx["d"][a:b]
+            if ctx["engaged"] is None:
+                out[a:b] = _presliding_kernel(x, d, target[a:b], s, F0)
+            else:
+                out[a:b] = engaged_presliding(x, d, target[a:b], s, F0, ctx["engaged"][a:b])
+        return out
 
     @property
     def reversals(self) -> int:
@@ -224,16 +255,14 @@ class TimeseriesProblem(Problem):
         for effect in self.effect_objects:
             v_slip = effect.slip_velocity(self, p, v_slip)
         Fc, Fs = self._levels(p, ctx["d"] < 0)
-        g = stribeck_kernel(v_slip, Fc, Fs, p["V"], p["delta"])
+        log_speed = self.log_speed if v_slip is self.v else None
+        g = stribeck_kernel(v_slip, Fc, Fs, p["V"], p["delta"], log_speed)
         for effect in self.effect_objects:
             g = effect.scale_g(self, p, g)
         target = ctx["d"] * g
         for effect in self.effect_objects:
             target = target + effect.target(self, p, ctx["v"])
-        if ctx["engaged"] is None:
-            F = _presliding_kernel(ctx["x"], ctx["d"], target, p["s"], self.F0)
-        else:
-            F = engaged_presliding(ctx["x"], ctx["d"], target, p["s"], self.F0, ctx["engaged"])
+        F = self._presliding(ctx, np.asarray(target, dtype=float), p["s"])
         for effect in self.effect_objects:
             F = effect.sensor(self, p, F, ctx)
         return F
@@ -298,13 +327,15 @@ class SteadyProblem(Problem):
 
     def __init__(self, data, effects=(), fixed=None):
         self.v = data.columns["v"]
+        with np.errstate(divide="ignore"):
+            self.log_speed = np.log(np.abs(self.v))
         self.measured = data.columns["F"]
         self.scales = Scales(_robust_scale(self.measured), _robust_scale(self.v))
         super().__init__(data, effects, fixed)
 
     def predict(self, p):
         Fc, Fs = self._levels(p, self.v < 0)
-        F = np.sign(self.v) * stribeck_kernel(self.v, Fc, Fs, p["V"], p["delta"])
+        F = np.sign(self.v) * stribeck_kernel(self.v, Fc, Fs, p["V"], p["delta"], self.log_speed)
         for effect in self.effect_objects:
             F = F + effect.target(self, p, self.v)
         for effect in self.effect_objects:

@@ -142,9 +142,15 @@ def estimate(problem) -> NoiseFloor:
     floor, method, rows = math.nan, "differences", 0
     for keys, nuisance in replicate_keys(problem):
         sigma, rows = _replicate_sigma(F, keys, nuisance)
-        if math.isfinite(sigma):
-            floor, method = sigma, "replicates"
-            break
+        if not math.isfinite(sigma):
+            continue
+        if nuisance is None:
+            floor, method = sigma, "replicates"  # true repeats: they are the noise
+        elif not sigma >= smooth:
+            # a two-way layout is exact only for an additive nuisance; otherwise it
+            # is one more estimate that is too high, never too low
+            floor, method = sigma, "replicates (dwell as a factor)"
+        break
     if not math.isfinite(floor):
         floor = smooth
     if q > 0 and not floor >= q / math.sqrt(12):

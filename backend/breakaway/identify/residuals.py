@@ -64,7 +64,8 @@ def explained_share(residual, values) -> float:
         return 0.0
     if levels.size > _MAX_LEVELS:
         bins = int(np.clip(n // _ROWS_PER_BIN, 5, _MAX_LEVELS))
-        rank = np.argsort(np.argsort(values, kind="stable"), kind="stable")
+        rank = np.empty(n, dtype=np.int64)
+        rank[np.argsort(values, kind="stable")] = np.arange(n)
         groups = rank * bins // n
     counts = np.bincount(groups)
     used = counts > 0
