@@ -53,3 +53,27 @@ def test_missing_file(tmp_path, capsys):
 def test_kind_option(steady_file, capsys):
     assert main(["fit", str(steady_file), "--kind", "breakaway"]) == 2
     assert "missing column" in capsys.readouterr().err
+
+
+def test_long_fits_print_a_progress_line(steady_file, capsys, monkeypatch):
+    import breakaway.cli as cli
+
+    monkeypatch.setattr(cli, "PROGRESS_ROWS", 10)
+    assert main(["fit", str(steady_file)]) == 0
+    err = capsys.readouterr().err
+    assert "breakaway fit:   0 % fitting the base model" in err
+    assert "100 % done" in err
+
+
+def test_text_report_lists_warnings_and_undetermined_parameters(tmp_path, capsys):
+    import numpy as np
+
+    k = np.full(20, 5.0)
+    F = 1.2 + 0.01 * np.random.default_rng(0).standard_normal(20)
+    path = tmp_path / "one-rate.csv"
+    path.write_text("k,F_ba\n" + "".join(f"{a},{b}\n" for a, b in zip(k, F)))
+    assert main(["fit", str(path)]) == 0
+    out = capsys.readouterr().out
+    assert "[single-rate]" in out
+    assert "(not determined by the data)" in out
+    assert "candidates not accepted:" in out

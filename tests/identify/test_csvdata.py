@@ -610,3 +610,12 @@ def test_error_in_large_file_is_located():
     cols = with_cell(columns_for("timeseries", 20_000), "x", 15_000, "1.2.3")
     with pytest.raises(DataError, match=r"line 15002, column 'x': '1\.2\.3' is not a number"):
         parse_csv(make_csv(cols).encode())
+
+
+def test_units_in_the_header_are_stripped_and_rotary_ones_recorded():
+    rows = "".join(f"{i * 0.001},{i * 1e-4},{1 + i}\n" for i in range(12))
+    data = parse_csv("t [s],x [rad],F (N·m)\n" + rows)
+    assert list(data.columns) == ["t", "x", "F"]
+    assert data.meta["units"] == "rotary"
+    linear = parse_csv("t (s),x [m],F [N]\n" + rows)
+    assert "units" not in linear.meta

@@ -124,3 +124,14 @@ def test_progress_callback_can_cancel():
     data, _ = make_dataset("steady", ("viscous",), seed=1)
     with pytest.raises(Stop):
         diagnose(data, progress=cancel)
+
+
+@pytest.mark.parametrize("kind,effects", [
+    ("timeseries", ("viscous", "asymmetry", "drift")),
+    ("breakaway", ("dwell", "asymmetry", "viscous")),
+])
+def test_three_effects_are_all_found(kind, effects):
+    result, _ = _report(kind, effects, seed=7)
+    assert sorted(result["effects"]) == sorted(effects)
+    assert result["residual_white"] is True
+    assert result["error_after"] <= 1.3 * NOISE[kind]

@@ -324,6 +324,72 @@ def _convert(rows, cells, used, index, n):
     return bad if bad is not None else columns
 
 
+# --------------------------------------------------------------------------- reading
+
+
+def _read_lines(data, max_bytes):
+    """The file's text lines, after the size and encoding checks."""
+    if isinstance(data, (bytearray, memoryview)):
+        data = bytes(data)
+    if isinstance(data, bytes):
+        _check_size(len(data), max_bytes)
+        text = _decode(data)
+    elif isinstance(data, str):
+        # Each character takes 1 to 4 bytes in UTF-8: encode only when that is ambiguous.
+        if max_bytes is not None and len(data) * 4 > max_bytes:
+            _check_size(len(data.encode("utf-8", "surrogatepass")), max_bytes)
+        text = data[1:] if data.startswith(_BOM) else data
+    else:
+        raise TypeError(f"data must be bytes or str, not {type(data).__name__}")
+
+    if "\n" not in text and "\r" in text:  # classic Mac line endings
+        lines = text.split("\r")
+    else:
+        lines = text.split("\n")  # a trailing "\r" is stripped with the other blanks
+
+    return lines
+
+
+def _read_meta_and_header(lines):
+    """``# key: value`` metadata before the header, their lines, and the header's index."""
+    meta: dict[str, str] = {}
+    meta_lines: dict[str, int] = {}
+    for i, raw in enumerate(lines):
+        s = raw.strip()
+        if not s or not s.strip(", \t"):
+            continue
+        if s[0] == "#":
+            key, colon, value = s[1:].partition(":")
+            key = key.strip().lower()
+            if colon and key:
+                meta[key] = value.strip()
+                meta_lines[key] = i + 1
+            continue
+        return meta, meta_lines, i
+    if any(line.lstrip().startswith("#") for line in lines):
+        raise DataError("no header line: the file has only comment and metadata lines")
+    raise DataError("the file is empty: expected a header line naming the columns")
+
+
+#: Units in a header cell that mark rotary data (MODEL.md §6 ``# units: rotary``).
+_ROTARY_UNITS = {"rad", "rad/s", "n·m", "nm", "n*m", "n.m", "n m", "n·m/s", "nm/s", "n*m/s"}
+
+
+def _strip_units(header):
+    """Header names without a trailing unit (``F [N·m]``, ``x (rad)``) and whether any
+    of those units is rotary."""
+    names, rotary = [], False
+    for cell in header:
+        name, unit = cell, ""
+        for open_, close in (("[", "]"), ("(", ")")):
+            if cell.endswith(close) and open_ in cell:
+                name, unit = cell[: cell.rindex(open_)].strip(), cell[cell.rindex(open_) + 1:-1]
+                break
+        rotary |= unit.strip().lower() in _ROTARY_UNITS
+        names.append(name)
+    return names, rotary
+
+
 # --------------------------------------------------------------------------- parser
 
 
@@ -355,48 +421,14 @@ def parse_csv(data: bytes | str, kind: str | None = None, max_bytes: int = DEFAU
         (``k > 0``, ``F_ba >= 0``, ``dwell >= 0``, ``direction = ±1``), non-increasing
         ``t``, fewer than :data:`MIN_ROWS` rows. The message names line and column.
     """
-    # -- size and text
-    if isinstance(data, (bytearray, memoryview)):
-        data = bytes(data)
-    if isinstance(data, bytes):
-        _check_size(len(data), max_bytes)
-        text = _decode(data)
-    elif isinstance(data, str):
-        # Each character takes 1 to 4 bytes in UTF-8: encode only when that is ambiguous.
-        if max_bytes is not None and len(data) * 4 > max_bytes:
-            _check_size(len(data.encode("utf-8", "surrogatepass")), max_bytes)
-        text = data[1:] if data.startswith(_BOM) else data
-    else:
-        raise TypeError(f"data must be bytes or str, not {type(data).__name__}")
-
-    if "\n" not in text and "\r" in text:  # classic Mac line endings
-        lines = text.split("\r")
-    else:
-        lines = text.split("\n")  # a trailing "\r" is stripped with the other blanks
+    lines = _read_lines(data, max_bytes)
 
     # -- metadata and header
-    meta: dict[str, str] = {}
-    meta_lines: dict[str, int] = {}
-    header_idx = None
-    for i, raw in enumerate(lines):
-        s = raw.strip()
-        if not s or not s.strip(", \t"):
-            continue
-        if s[0] == "#":
-            key, colon, value = s[1:].partition(":")
-            key = key.strip().lower()
-            if colon and key:
-                meta[key] = value.strip()
-                meta_lines[key] = i + 1
-            continue
-        header_idx = i
-        break
-    if header_idx is None:
-        if any(line.lstrip().startswith("#") for line in lines):
-            raise DataError("no header line: the file has only comment and metadata lines")
-        raise DataError("the file is empty: expected a header line naming the columns")
+    meta, meta_lines, header_idx = _read_meta_and_header(lines)
     header_line = header_idx + 1
-    header = _split(lines[header_idx].strip())
+    header, rotary = _strip_units(_split(lines[header_idx].strip()))
+    if rotary and "units" not in meta:
+        meta["units"] = "rotary"  # N·m and rad in the header: label reports that way
 
     # -- kind
     if kind is not None and str(kind).strip():
@@ -441,7 +473,7 @@ def parse_csv(data: bytes | str, kind: str | None = None, max_bytes: int = DEFAU
     line_no = np.asarray(keep, dtype=np.int64) + (header_idx + 2)
     n = len(rows)
     ncol = len(header)
-    quoted = '"' in text
+    quoted = any('"' in row for row in rows)
     cells = [_split(r) for r in rows] if quoted else None
 
     counts = np.fromiter(map(len, cells) if quoted else (r.count(",") + 1 for r in rows),

@@ -2,33 +2,40 @@
 
 from __future__ import annotations
 
-_UNITS = {"Fc": "N", "Fs": "N", "V": "m/s", "delta": "", "s": "1/m", "sigma": "N·s/m",
-          "Fc_neg": "N", "Fs_neg": "N", "F_offset": "N", "alpha": "1/s", "m_e": "kg",
-          "A": "N", "wavelength": "m", "phase": "rad", "tau": "s", "play": "m", "zeta": "",
-          "tau_d": "s"}
 
-
-def _value(value, stderr):
+def _value(value, stderr, determined, unit):
     if value is None:
         return "n/a"
     text = f"{value:.5g}"
-    if stderr is None:
-        return text + " (not determined by the data)"
-    return f"{text} ± {stderr:.2g}"
+    if stderr is not None:
+        text += f" ± {stderr:.2g}"
+    text += f" {unit}".rstrip()
+    if not determined:
+        text += "   (not determined by the data)"
+    return text
+
+
+def _force(report) -> str:
+    units = report.get("units", {})
+    return units.get("F_ba" if report["kind"] == "breakaway" else "F", "N")
 
 
 def format_report(report: dict, source: str | None = None) -> str:
     """A plain-text rendering of a §8 report."""
+    N = _force(report)
+    units = report.get("units", {})
     lines = []
     title = f"Identification of {source}" if source else "Identification"
     lines += [title, "=" * len(title), ""]
     lines.append(f"kind: {report['kind']}, {report['n']} rows")
-    lines.append(f"noise floor (model-free): {report['noise_floor']:.4g} N")
+    method = report.get("noise_method")
+    lines.append(f"noise floor (model-free): {report['noise_floor']:.4g} {N}"
+                 + (f", from {method}" if method else ""))
     lines.append("")
     base = report["base"]
-    lines.append(f"base model: RMSE {base['rmse']:.4g} N, BIC {base['bic']:.1f}")
+    lines.append(f"base model: RMSE {base['rmse']:.4g} {N}, BIC {base['bic']:.1f}")
     for i, step in enumerate(report["steps"], 1):
-        lines.append(f"step {i}: + {step['effect']}: RMSE {step['rmse']:.4g} N, "
+        lines.append(f"step {i}: + {step['effect']}: RMSE {step['rmse']:.4g} {N}, "
                      f"BIC {step['bic']:.1f}")
         lines.append(f"    evidence: {step['evidence']}")
     if not report["steps"]:
@@ -41,10 +48,11 @@ def format_report(report: dict, source: str | None = None) -> str:
     final = report["final"]
     lines.append("final parameters:")
     for name, value in final["params"].items():
-        unit = _UNITS.get(name, "")
-        lines.append(f"    {name:<10} {_value(value, final['stderr'].get(name))} {unit}".rstrip())
+        shown = _value(value, final["stderr"].get(name), final["determined"].get(name, True),
+                       units.get(name, ""))
+        lines.append(f"    {name:<10} {shown}")
     lines.append("")
-    lines.append("error (RMSE, N)      before      after")
+    lines.append(f"error (RMSE, {N})     before      after")
     lines.append(f"  fit              {report['error_before']:>10.4g} {report['error_after']:>10.4g}")
     lines.append(f"  held-out         {report['heldout']['before']:>10.4g} "
                  f"{report['heldout']['after']:>10.4g}")
@@ -53,4 +61,19 @@ def format_report(report: dict, source: str | None = None) -> str:
     lines.append("residual white: " + ("yes" if report["residual_white"] else "no"))
     if report["unexplained"]:
         lines.append("unexplained: clear structure remains that no candidate effect explains.")
+    structure = [s for s in report.get("residual_structure", []) if s["strength"] >= 0.05]
+    if structure:
+        lines.append("the residual still depends on: " + ", ".join(
+            f"{s['against']} ({100 * s['strength']:.0f} %)" for s in structure))
+    if report.get("warnings"):
+        lines.append("")
+        lines.append("warnings:")
+        for w in report["warnings"]:
+            lines.append(f"  [{w['code']}] {w['message']}")
+    rejected = {e: c for e, c in report.get("candidates", {}).items() if not c["accepted"]}
+    if rejected:
+        lines.append("")
+        lines.append("candidates not accepted:")
+        for effect, verdict in rejected.items():
+            lines.append(f"  {effect:<10} {verdict['reason']}")
     return "\n".join(lines) + "\n"

@@ -1,0 +1,60 @@
+"""Kinematics of measured positions: quantisation, reversals with hysteresis, velocity."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from breakaway.identify.kinematics import direction, position_noise, quantum, velocity
+from breakaway.identify.synthetic import displacement_excitation
+from breakaway.presliding import motion_direction
+
+
+@pytest.fixture(scope="module")
+def strokes():
+    return displacement_excitation(np.random.default_rng(4), 6000)
+
+
+def test_exact_positions_follow_model_md_section_3(strokes):
+    t, x = strokes
+    assert quantum(x) == 0.0
+    assert position_noise(x) == 0.0
+    np.testing.assert_array_equal(direction(x, 0.0), motion_direction(x))
+    np.testing.assert_array_equal(velocity(t, x, 0.0), np.gradient(x, t))
+
+
+@pytest.mark.parametrize("count", [1e-6, 5e-6, 2.5e-5])
+def test_an_encoder_step_is_found(strokes, count):
+    _, x = strokes
+    assert quantum(np.round(x / count) * count) == pytest.approx(count, rel=1e-6)
+
+
+def test_jitter_of_one_count_is_no_reversal(strokes):
+    t, x = strokes
+    count = 2e-6
+    rng = np.random.default_rng(0)
+    jittered = (np.round(x / count) + rng.integers(-1, 2, x.size)) * count
+    d = direction(jittered, 3 * count)
+    exact = motion_direction(x)
+    assert np.count_nonzero(np.diff(d)) == np.count_nonzero(np.diff(exact))
+    # reversals land within a few samples of the true ones
+    true_turns = np.flatnonzero(np.diff(exact))
+    found = np.flatnonzero(np.diff(d))
+    assert np.max(np.abs(found - true_turns)) <= 40
+
+
+def test_slow_motion_is_timed_over_several_counts(strokes):
+    t, x = strokes
+    count = 2e-6
+    q = np.round(x / count) * count
+    plain = np.gradient(q, t)
+    adaptive = velocity(t, q, count)
+    exact = np.gradient(x, t)
+    # measured: 0.48 of the plain gradient's error on this record
+    assert np.sqrt(np.mean((adaptive - exact) ** 2)) < 0.6 * np.sqrt(np.mean((plain - exact) ** 2))
+
+
+def test_noise_in_x_is_measured(strokes):
+    _, x = strokes
+    noisy = x + 2e-6 * np.random.default_rng(1).standard_normal(x.size)
+    assert position_noise(noisy) == pytest.approx(2e-6, rel=0.15)
