@@ -329,6 +329,9 @@ function renderSummary(job) {
   const verdictBox = $("fit-verdict");
   verdictBox.textContent = verdict.join(" ");
   verdictBox.classList.toggle("unexplained", Boolean(report.unexplained));
+  $("fit-warnings").replaceChildren(...(report.warnings ?? []).map((w) => element("li",
+    { "data-code": w.code, ...(w.parameter ? { "data-param": w.parameter } : {}) },
+    element("strong", { text: w.code }), `: ${w.message}`)));
   $("fit-meta").textContent = `${job.source}: ${report.kind}, ${report.n} rows`
     + (job.series.stride > 1 ? ` (the plots show 1 row in ${job.series.stride})` : "")
     + (report.seconds != null ? `, fitted in ${formatNumber(report.seconds, 3)} s` : "");
@@ -354,11 +357,15 @@ function renderParamTable(report) {
   const body = $("fit-param-table").tBodies[0];
   body.replaceChildren(...names.map((name) => {
     const label = element("th", { scope: "row", text: paramLabel(name) });
-    const shown = (fit) => (name in fit.params
-      ? formatWithError(fit.params[name], fit.stderr?.[name]) : "–");
-    return element("tr", { "data-param": name }, label,
-      element("td", { "data-model": "base", text: shown(base) }),
-      element("td", { "data-model": "final", text: shown(final) }));
+    const cell = (fit, model) => {
+      if (!(name in fit.params)) return element("td", { "data-model": model, text: "–" });
+      const determined = fit.determined?.[name] !== false;
+      const text = formatWithError(fit.params[name], fit.stderr?.[name])
+        + (determined ? "" : " ⚠ not determined");
+      return element("td", { "data-model": model, "data-determined": String(determined),
+        className: determined ? "" : "undetermined", text });
+    };
+    return element("tr", { "data-param": name }, label, cell(base, "base"), cell(final, "final"));
   }));
 }
 
@@ -380,12 +387,21 @@ function renderSteps(report) {
     ? `Dropped again as redundant once later effects were in: ${dropped.join(", ")}.` : "";
   const candidates = report.candidates ?? {};
   const body = $("fit-candidates").tBodies[0];
-  body.replaceChildren(...Object.entries(candidates).map(([name, c]) => element("tr", {},
+  const number = (value, digits) => (value == null ? "–" : formatNumber(value, digits));
+  body.replaceChildren(...Object.entries(candidates).map(([name, c]) => element("tr",
+    { "data-effect": name, "data-accepted": String(Boolean(c.accepted)) },
     element("th", { scope: "row", text: name }),
-    element("td", { text: formatNumber(c.rmse) }),
-    element("td", { text: formatNumber(c.bic, 6) }),
-    element("td", { text: c.heldout == null ? "–" : formatNumber(c.heldout) }))));
+    element("td", { text: number(c.rmse) }),
+    element("td", { text: number(c.bic, 6) }),
+    element("td", { text: number(c.heldout) }),
+    element("td", { className: "verdict", text: c.accepted ? "accepted" : `not accepted: ${c.reason}` }))));
   $("fit-candidates-box").hidden = !Object.keys(candidates).length;
+  const structure = report.residual_structure ?? [];
+  $("fit-structure").tBodies[0].replaceChildren(...structure.map((s) => element("tr",
+    { "data-against": s.against },
+    element("th", { scope: "row", text: s.against }),
+    element("td", { text: `${Math.round(100 * s.strength)} %` }))));
+  $("fit-structure-box").hidden = !structure.length;
 }
 
 function plotCard(id, title, caption) {

@@ -332,3 +332,37 @@ def test_downloads_report_and_residuals(explorer):
     assert len(rows) - 1 == report["n"]
     after = np.array([float(row[5]) for row in rows[1:]])
     assert math.sqrt(np.mean(after**2)) == pytest.approx(report["error_after"], rel=1e-6)
+
+
+def test_panel_shows_warnings_undetermined_parameters_verdicts_and_structure(explorer):
+    rng = np.random.default_rng(5)
+    # steady friction with a quadratic drag: outside the library
+    speeds = np.geomspace(1e-4, 0.3, 80)
+    v = np.concatenate([-speeds[::-1], speeds])
+    g = 10 + 5 * np.exp(-(np.abs(v) / 0.005) ** 1.5)
+    F = np.sign(v) * g + 60 * v * np.abs(v) + 0.05 * rng.standard_normal(v.size)
+    text = "v,F\n" + "".join(f"{a:.10g},{b:.10g}\n" for a, b in zip(v, F))
+    report = engine_report(text)
+    explorer.open("?sim=0")
+    upload(explorer, text, "drag.csv")
+    assert wait_for(explorer, "done", "error") == "done"
+    page = explorer.page
+    top = report["residual_structure"][0]
+    row = page.locator(f'#fit-structure tr[data-against="{top["against"]}"]')
+    assert row.locator("td").inner_text() == f"{round(100 * top['strength'])} %"
+    page.locator("#fit-candidates-box summary").click()
+    for effect, verdict in report["candidates"].items():
+        shown = page.locator(f'#fit-candidates tr[data-effect="{effect}"] td.verdict').inner_text()
+        assert shown == ("accepted" if verdict["accepted"] else f"not accepted: {verdict['reason']}")
+
+    # one rate only: a warning, and the parameters the data cannot fix are marked
+    k = np.full(20, 5.0)
+    text = "k,F_ba\n" + "".join(f"{a},{1.2 + 0.01 * b:.6f}\n" for a, b in zip(k, rng.standard_normal(20)))
+    upload(explorer, text, "one-rate.csv")
+    assert wait_for(explorer, "done", "error") == "done"
+    assert page.locator('#fit-warnings li[data-code="single-rate"]').count() == 1
+    cell = page.locator('#fit-param-table tr[data-param="V"] td[data-model="final"]')
+    assert cell.get_attribute("data-determined") == "false"
+    assert "not determined" in cell.inner_text()
+    assert page.locator('#fit-param-table tr[data-param="Fs"] td[data-model="final"]'
+                        ).get_attribute("data-determined") == "true"
