@@ -453,6 +453,8 @@ class Trajectory:
     t_ba: float
     F_ba: float
     reversals: int
+    #: LuGre's bristle deflection z [m] per sample (None for the presliding model)
+    bristle: np.ndarray | None = None
 
 
 def _rates(k):
@@ -544,7 +546,8 @@ def _run_one(model, k, p, y0, mem0, t_end, atol, rtol, max_steps, capacity):
                                         t_end * _H_MAX_FRACTION, max_steps, rec_t, rec_y, rec_F)
     broke = status == STATUS_BREAKAWAY
     return Trajectory(rec_t[:n], rec_y[:n, 0], rec_y[:n, 1], rec_F[:n], k * rec_t[:n],
-                      t if broke else np.nan, F if broke else np.nan, int(jumps))
+                      t if broke else np.nan, F if broke else np.nan, int(jumps),
+                      rec_y[:n, 2].copy() if y.size > 2 else None)
 
 
 def simulate_breakaway(k, Fc, Fs, V, delta, s=1.0, sigma=0.0, m=DEFAULTS["m"], z_ba=0.95,

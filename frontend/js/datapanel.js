@@ -337,15 +337,20 @@ function renderSummary(job) {
     + (report.seconds != null ? `, fitted in ${formatNumber(report.seconds, 3)} s` : "");
 }
 
+function forceUnit(report) {
+  return report.units?.[report.kind === "breakaway" ? "F_ba" : "F"] ?? "N";
+}
+
 function renderErrorTable(report) {
+  const unit = forceUnit(report);
   const cell = (metric, value) => element("td", { "data-metric": metric, text: formatNumber(value, 4) });
   const body = $("fit-error-table").tBodies[0];
   body.replaceChildren(
-    element("tr", {}, element("th", { scope: "row", text: "fit RMSE [N]" }),
+    element("tr", {}, element("th", { scope: "row", text: `fit RMSE [${unit}]` }),
       cell("error_before", report.error_before), cell("error_after", report.error_after)),
-    element("tr", {}, element("th", { scope: "row", text: "held-out RMSE [N]" }),
+    element("tr", {}, element("th", { scope: "row", text: `held-out RMSE [${unit}]` }),
       cell("heldout_before", report.heldout.before), cell("heldout_after", report.heldout.after)),
-    element("tr", {}, element("th", { scope: "row", text: "noise floor [N]" }),
+    element("tr", {}, element("th", { scope: "row", text: `noise floor [${unit}]` }),
       element("td", { "data-metric": "noise_floor", colspan: "2", text: formatNumber(report.noise_floor, 4) })),
   );
 }
@@ -356,12 +361,17 @@ function renderParamTable(report) {
   const names = [...new Set([...Object.keys(base.params), ...Object.keys(final.params)])];
   const body = $("fit-param-table").tBodies[0];
   body.replaceChildren(...names.map((name) => {
-    const label = element("th", { scope: "row", text: paramLabel(name) });
+    // rotary data: the report's units replace the linear ones of the label
+    const unit = report.units?.[name];
+    const text = unit ? paramLabel(name).replace(/\[[^\]]*\]/, `[${unit}]`) : paramLabel(name);
+    const label = element("th", { scope: "row", text });
     const cell = (fit, model) => {
       if (!(name in fit.params)) return element("td", { "data-model": model, text: "–" });
       const determined = fit.determined?.[name] !== false;
-      const text = formatWithError(fit.params[name], fit.stderr?.[name])
-        + (determined ? "" : " ⚠ not determined");
+      const stderr = fit.stderr?.[name];
+      const text = determined ? formatWithError(fit.params[name], stderr)
+        : formatNumber(fit.params[name], 4)
+          + (stderr == null ? "" : ` ± ${formatNumber(stderr, 2)}`) + " ⚠ not determined";
       return element("td", { "data-model": model, "data-determined": String(determined),
         className: determined ? "" : "undetermined", text });
     };

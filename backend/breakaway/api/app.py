@@ -14,7 +14,7 @@ from ..settings import get_settings
 from .errors import request_validation_handler
 from .middleware import BodySizeLimit, CatchAll, SecurityHeaders
 from .fitjobs import FitJobs
-from .routers import assets, explore, fit, health, presets, samples, simulate
+from .routers import assets, explore, fit, health, presets, ramp, samples, simulate
 from .simulation import SimulationRunner
 
 #: The API, one router per resource.
@@ -23,6 +23,7 @@ ROUTERS: list[APIRouter] = [
     presets.router,
     explore.router,
     simulate.router,
+    ramp.router,
     fit.router,
     samples.router,
     assets.router,

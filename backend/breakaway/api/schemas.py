@@ -161,6 +161,19 @@ class SimulateRequest(_Levels):
         return params
 
 
+class RampRequest(SimulateRequest):
+    """The ramp experiment at one rate (MODEL.md §9 ``/api/ramp``); fields as
+    ``/api/simulate`` with a single ``k``, and ``F_hat`` for the E13 value beside it."""
+
+    k: float = Field(..., gt=0, allow_inf_nan=False, description="force rate [N/s], > 0")
+    F_hat: Literal["Fc", "Fs", "avg", "self"] | None = Field(
+        None, description="F̂ of the E13 value (default of breakaway.params.DEFAULTS)")
+
+    def worker_params(self) -> dict[str, float | str]:
+        params = self.lugre_params() if self.model == "lugre" else self.presliding_params()
+        return {**params, "F_hat": self.F_hat or DEFAULTS["F_hat"]}
+
+
 def _field_error(name: str, value: object, message: str):
     """A pydantic ValidationError located at ``name`` (for checks across fields)."""
     from pydantic_core import ValidationError
@@ -229,6 +242,25 @@ class SimulateResponse(BaseModel):
     t_ba: Floats = Field(description="break-away time [s]")
     reversals: list[int] = Field(description="motion reversals before break-away")
     params: dict[str, float] = Field(description="the parameters the simulation used")
+
+
+class RampResponse(BaseModel):
+    """One ramp run up to break-away (thinned to at most 2000 samples) and E13."""
+
+    model: Literal["presliding", "lugre"]
+    k: float = Field(description="force rate [N/s]")
+    t: Floats = Field(description="time [s]")
+    x: Floats = Field(description="position [m]")
+    v: Floats = Field(description="velocity ẋ [m/s]")
+    u: Floats = Field(description="actuation u = k·t [N]")
+    F: Floats = Field(description="friction [N]")
+    z: Floats = Field(description="s·|x − x_r| (presliding) or LuGre's bristle state z [m]")
+    t_ba: float | None = Field(description="break-away time [s]; null if none in the budget")
+    u_ba: float | None = Field(description="actuation at break-away k·t_ba [N]")
+    F_ba: float | None = Field(description="friction at break-away [N]")
+    E13: float = Field(description="quasi-static break-away force of (E13) at this k [N]")
+    reversals: int = Field(description="motion reversals before break-away")
+    params: dict[str, float | str] = Field(description="the parameters the run used")
 
 
 class Preset(BaseModel):

@@ -44,6 +44,13 @@ def run_simulation(model: str, k: list[float], params: dict[str, float],
     }
 
 
+def run_ramp(model: str, k: float, params: dict[str, float], max_steps: int) -> dict[str, Any]:
+    """Worker entry point: one ramp run as time series (MODEL.md §9 ``/api/ramp``)."""
+    from ..ramp import ramp_experiment
+
+    return ramp_experiment(model, k, params, max_steps)
+
+
 def _nullable(values) -> list[float | None]:
     return [float(v) if v == v and abs(v) != float("inf") else None for v in values]
 
@@ -86,9 +93,10 @@ class SimulationRunner:
     def warm_up(self) -> Future:
         return self._executor().submit(_warm_up)
 
-    async def run(self, timeout: float, *args: Any) -> dict[str, Any]:
-        """``run_simulation(*args)`` in the worker, one run at a time, each within
-        ``timeout`` [s] of waiting plus running; a worker that died is replaced once."""
+    async def run(self, timeout: float, *args: Any, target=run_simulation) -> dict[str, Any]:
+        """``target(*args)`` (by default :func:`run_simulation`) in the worker, one run
+        at a time, each within ``timeout`` [s] of waiting plus running; a worker that
+        died is replaced once."""
         deadline = asyncio.get_running_loop().time() + timeout
         if self._turn is None:
             self._turn = asyncio.Lock()
@@ -101,7 +109,7 @@ class SimulationRunner:
             for attempt in (1, 2):
                 remaining = max(deadline - asyncio.get_running_loop().time(), 0.0)
                 try:
-                    future = self._executor().submit(run_simulation, *args)
+                    future = self._executor().submit(target, *args)
                     return await asyncio.wait_for(asyncio.wrap_future(future), remaining)
                 except asyncio.TimeoutError:
                     self._restart()  # only this request's run is in the worker

@@ -1,0 +1,35 @@
+"""POST /api/ramp: the ramp experiment at one rate, as time series (MODEL.md §5, §9)."""
+
+from __future__ import annotations
+
+from fastapi import APIRouter, Request
+from fastapi.exceptions import RequestValidationError
+
+from ...settings import get_settings
+from ..errors import model_errors
+from ..schemas import RampRequest, RampResponse
+from ..simulation import SimulationTimeout, run_ramp
+
+router = APIRouter(prefix="/api", tags=["simulate"])
+
+
+@router.post("/ramp", response_model=RampResponse,
+             responses={422: {"description": "invalid parameters, or over the time budget"}})
+async def ramp(body: RampRequest, request: Request) -> RampResponse:
+    """Simulate ``m·ẍ + F = k·t`` (``presliding``) or LuGre at one rate up to break-away.
+
+    Returns u(t) = k·t, F(t), x(t), ẋ(t) and z(t) (at most 2000 samples), the
+    break-away instant and the E13 value for the same parameters. Runs in the
+    simulation worker within ``BREAKAWAY_SIMULATE_TIMEOUT_S``.
+    """
+    settings = get_settings()
+    params = body.worker_params()
+    try:
+        with model_errors(RampRequest.model_fields.keys()):
+            result = await request.app.state.simulations.run(
+                settings.simulate_timeout_s, body.model, body.k, params,
+                settings.simulate_max_steps, target=run_ramp)
+    except SimulationTimeout as exc:
+        raise RequestValidationError([{"type": "simulation_timeout", "loc": ("body", "k"),
+                                       "msg": f"{exc}; ask for a larger rate"}]) from exc
+    return RampResponse(model=body.model, k=body.k, params=params, **result)
