@@ -16,10 +16,15 @@ import { fitReady, fitReport, initDataPanel } from "./datapanel.js";
 import { exportCsv, exportPng } from "./export.js";
 import { PLOT_IDS, breakawayFigure, figures } from "./plots.js";
 import {
+  explainBreakaway, rampBody, rampFigure, simulationPhaseTrace,
+} from "./ramp.js";
+import {
   defaultState, exploreBody, fromQuery, matchingPreset, presetState, simulateBody, toQuery,
 } from "./state.js";
 
 const SIM_DEBOUNCE_MS = 350;
+const RAMP_DEBOUNCE_MS = 60;
+const PLAY_SECONDS = 4;
 const PLOT_CONFIG = {
   responsive: true,
   displaylogo: false,
@@ -43,9 +48,15 @@ const app = {
   simTimer: null,
   simBusy: true, // until the first frame decides
   lugreController: null,
+  ramp: null, // the last /api/ramp answer, with its key
+  rampKey: null,
+  rampController: null,
+  rampTimer: null,
+  cursor: null, // play: the time cursor [s]
+  playing: null, // requestAnimationFrame id
 };
 
-const waiting = { ready: [], sim: [] };
+const waiting = { ready: [], sim: [], ramp: [] };
 const $ = (id) => document.getElementById(id);
 
 // ---------------------------------------------------------------------------------
@@ -94,6 +105,7 @@ function refresh() {
   app.exploreController = null;
   if (Object.keys(errors).length) {
     cancelSim();
+    cancelRamp();
     $("plots").dataset.valid = "false";
     setBusy(false);
     return;
@@ -115,6 +127,7 @@ function refresh() {
       app.exploreController = null;
       setBusy(false);
       scheduleSim();
+      scheduleRamp();
       ensureLugre();
     })
     .catch((error) => {
@@ -165,7 +178,114 @@ function react(id, figure) {
 
 function draw() {
   const figs = figures(app.frame, app.state, app.sim, app.state.lugre ? app.lugre : null);
+  figs.phase = withSimulatedPath(figs.phase);
   return Promise.all(PLOT_IDS.map((id) => react(id, figs[id])));
+}
+
+/** The phase figure with the simulated ramp's path (z, ẋ) over the E12 family. */
+function withSimulatedPath(figure) {
+  if (!app.ramp) return figure;
+  const trace = simulationPhaseTrace(app.ramp, app.cursor);
+  if (app.rampKey !== rampKeyNow()) trace.opacity = 0.35;
+  return { ...figure, data: [...figure.data, trace] };
+}
+
+// ---------------------------------------------------------------------------------
+// the ramp experiment at the current k (debounced, abortable): its own plot, the path
+// in the phase plot, and the sentence that explains the numbers
+// ---------------------------------------------------------------------------------
+
+function rampKeyNow() {
+  return JSON.stringify(rampBody(app.state));
+}
+
+function rampBusy() {
+  return Boolean(app.rampTimer || app.rampController);
+}
+
+function cancelRamp() {
+  clearTimeout(app.rampTimer);
+  app.rampTimer = null;
+  if (app.rampController) app.rampController.abort();
+  app.rampController = null;
+  if (!rampBusy()) flush("ramp");
+}
+
+function scheduleRamp() {
+  if (!app.frame) return;
+  if (app.ramp && app.rampKey === rampKeyNow()) {
+    drawRamp();
+    return;
+  }
+  clearTimeout(app.rampTimer);
+  app.rampTimer = setTimeout(runRamp, RAMP_DEBOUNCE_MS);
+}
+
+async function runRamp() {
+  app.rampTimer = null;
+  if (app.rampController) app.rampController.abort();
+  const controller = new AbortController();
+  app.rampController = controller;
+  const key = rampKeyNow();
+  try {
+    const result = await postJSON("/api/ramp", rampBody(app.state), controller.signal);
+    if (controller !== app.rampController) return;
+    app.ramp = result;
+    app.rampKey = key;
+    stopPlay();
+    await drawRamp();
+  } catch (error) {
+    if (error.name === "AbortError" || controller !== app.rampController) return;
+    $("ba-explain").textContent = `The ramp experiment could not be simulated: ${error.message}`;
+  }
+  if (controller === app.rampController) {
+    app.rampController = null;
+    if (!rampBusy()) flush("ramp");
+  }
+}
+
+function drawRamp() {
+  if (!app.ramp || !app.frame) return Promise.resolve();
+  $("ba-explain").textContent = explainBreakaway(app.ramp, app.state);
+  const phase = withSimulatedPath(figures(app.frame, app.state, null, null).phase);
+  return Promise.all([
+    react("ramp", rampFigure(app.ramp, app.state, app.cursor)),
+    react("phase", phase),
+  ]);
+}
+
+function stopPlay() {
+  if (app.playing) cancelAnimationFrame(app.playing);
+  app.playing = null;
+  app.cursor = null;
+  $("ramp-play").setAttribute("aria-pressed", "false");
+  $("ramp-play").textContent = "Play";
+}
+
+/** Moves a time cursor from 0 to the break-away through the ramp and phase plots. */
+function togglePlay() {
+  if (app.playing || !app.ramp) {
+    stopPlay();
+    drawRamp();
+    return;
+  }
+  const end = app.ramp.t_ba ?? app.ramp.t[app.ramp.t.length - 1];
+  const started = performance.now();
+  $("ramp-play").setAttribute("aria-pressed", "true");
+  $("ramp-play").textContent = "Stop";
+  const step = (now) => {
+    const fraction = Math.min((now - started) / (PLAY_SECONDS * 1000), 1);
+    app.cursor = fraction * end;
+    drawRamp();
+    if (fraction < 1 && app.playing) {
+      app.playing = requestAnimationFrame(step);
+    } else {
+      app.playing = null;
+      $("ramp-play").setAttribute("aria-pressed", "false");
+      $("ramp-play").textContent = "Play";
+    }
+  };
+  app.playing = requestAnimationFrame(step);
 }
 
 function drawBreakaway() {
@@ -327,6 +447,7 @@ function wireControls() {
     ensureLugre();
   });
   $("simulate").addEventListener("click", () => scheduleSim(true));
+  $("ramp-play").addEventListener("click", togglePlay);
   $("preset").addEventListener("change", () => {
     const preset = app.presets.find((p) => p.name === $("preset").value);
     if (preset) setState(presetState(preset, app.defaults, app.state));
@@ -407,6 +528,12 @@ window.breakaway = {
   ready: () => whenIdle("ready", () => app.busy),
   /** Resolves once no simulation is pending or running. */
   simReady: () => whenIdle("sim", () => app.simBusy),
+  /** Resolves once the ramp experiment shows the current state; its answer. */
+  rampReady: async () => {
+    await whenIdle("ready", () => app.busy);
+    await whenIdle("ramp", rampBusy);
+    return app.ramp;
+  },
   /** A copy of the current state. */
   state: () => JSON.parse(JSON.stringify(app.state)),
   /** Completed redraws, and the last one's duration (input to plots drawn) [ms]. */

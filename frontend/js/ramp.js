@@ -64,8 +64,11 @@ export function simulationPhaseTrace(ramp, cursor = null) {
   const z = [];
   const v = [];
   const end = cursor == null ? ramp.t.length : nearestIndex(ramp.t, cursor) + 1;
+  // the chatter's tiny velocities would stretch the log axis over decades: the path is
+  // drawn from 1e-4 of its largest velocity up
+  const floor = 1e-4 * Math.max(...ramp.v.filter(Number.isFinite));
   for (let i = 0; i < end; i += 1) {
-    if (ramp.v[i] > 0 && ramp.z[i] <= 1) {
+    if (ramp.v[i] > floor && ramp.z[i] <= 1) {
       z.push(ramp.z[i]);
       v.push(ramp.v[i]);
     } else if (z.length && z[z.length - 1] !== null) {
@@ -93,7 +96,7 @@ export function nearestIndex(values, target) {
  * what E13 says, the difference, and why they differ.
  */
 export function explainBreakaway(ramp, state) {
-  const k = fmt(Number(state.k));
+  const k = fmt(Number(ramp.k ?? state.k));
   if (ramp.u_ba == null) {
     return `At k = ${k} N/s the simulated ramp did not break away within the step budget; `
       + `E13 says ${fmt(ramp.E13)} N.`;
