@@ -138,13 +138,17 @@ def test_layout_at_1280_by_800(explorer):
     explorer.open("?sim=0")
     layout = _layout(explorer.page)
     assert layout["scrollWidth"] <= layout["innerWidth"]
-    assert len(layout["plots"]) == 4
+    assert len(layout["plots"]) == 5
     for plot in layout["plots"]:
         assert plot["width"] >= 350 and plot["height"] >= 240
         assert 0 <= plot["left"] and plot["right"] <= 1280
-    # the four plots sit in two columns beside the controls
-    assert len({round(plot["left"]) for plot in layout["plots"]}) == 2
+    # the four model plots sit in two columns beside the controls, the ramp below them
+    # across both
+    four, ramp = layout["plots"][:4], layout["plots"][4]
+    assert len({round(plot["left"]) for plot in four}) == 2
     assert layout["controls"]["right"] <= min(plot["left"] for plot in layout["plots"])
+    assert ramp["top"] >= max(plot["top"] + plot["height"] for plot in four)
+    assert ramp["width"] >= 1.9 * four[0]["width"]
 
 
 def test_phone_width(explorer):

@@ -34,7 +34,10 @@ LABELS = {"Fc": "Fc [N]", "Fs": "Fs [N]", "V": "V [m/s]", "delta": "δ (delta)",
 
 
 def snapshot(explorer):
-    return {plot: explorer.traces(plot) for plot in PLOTS}
+    """The model's curves on each plot; the simulated ramp's path in the phase plot
+    follows every parameter of the simulation (m too) and arrives on its own time."""
+    return {plot: {name: trace for name, trace in explorer.traces(plot).items()
+                   if name != "simulation"} for plot in PLOTS}
 
 
 def differs(before: dict, after: dict, rtol: float = 1e-6) -> bool:
