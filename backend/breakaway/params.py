@@ -63,15 +63,33 @@ PRESETS: dict[str, dict[str, float | str]] = {
         # presliding distance of LuGre's bristles: Fs/sigma0 = 15 µm
         "s": LUGRE_1995["sigma0"] / LUGRE_1995["Fs"],
     },
+    # a precision linear stage in SI units: 20 µm presliding, a 0.5 kg carriage
+    "lab-stage": {
+        **DEFAULTS,
+        "Fc": 2.0, "Fs": 3.0, "V": 2e-3, "delta": 1.0, "sigma": 20.0, "s": 5e4,
+        "m": 0.5, "k": 5.0,
+    },
 }
 
+#: Presets whose numbers are in the note's normalised units (s = 1: positions in
+#: presliding distances, velocities in presliding distances per second); the others
+#: are SI.
+NORMALISED_PRESETS = frozenset({"fig5", "no-stribeck", "viscous", "strengthening",
+                                "sharp-stribeck"})
+
 PRESET_DESCRIPTIONS: dict[str, str] = {
-    "fig5": "The note's Fig. 5: Fs = 1.5 Fc, σ = 0, s = 1.",
-    "no-stribeck": "Fs = Fc: no velocity weakening, break-away is Fc·f(z*) for every k.",
-    "viscous": "Fig. 5 with viscous friction σ = 0.001 N·s/m: F_ba dips, then rises again at high k.",
-    "strengthening": "δ < 0: velocity-strengthening curve, F_ba rises from Fc towards Fs.",
-    "sharp-stribeck": "Narrow Stribeck dip (V = 5, δ = 2): a steep fall of F_ba.",
-    "lugre-1995": "The steady-state curve of the LuGre 1995 paper (vs = 1 mm/s, δ = 2).",
+    "fig5": "The note's Fig. 5: Fs = 1.5 Fc, σ = 0, s = 1 (normalised units).",
+    "no-stribeck": "Fs = Fc: no velocity weakening, break-away is Fc·f(z*) for every k "
+                   "(normalised units).",
+    "viscous": "Fig. 5 with viscous friction σ = 0.001: F_ba dips, then rises again at high k "
+               "(normalised units).",
+    "strengthening": "δ < 0: velocity-strengthening curve, F_ba rises from Fc towards Fs "
+                     "(normalised units).",
+    "sharp-stribeck": "Narrow Stribeck dip (V = 5, δ = 2): a steep fall of F_ba "
+                      "(normalised units).",
+    "lugre-1995": "The steady-state curve of the LuGre 1995 paper (vs = 1 mm/s, δ = 2), SI units.",
+    "lab-stage": "A precision linear stage in SI units: Fc = 2 N, Fs = 3 N, V = 2 mm/s, "
+                 "σ = 20 N·s/m, 20 µm presliding, 0.5 kg.",
 }
 
 

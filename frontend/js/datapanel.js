@@ -34,6 +34,14 @@ const panel = {
   result: null, // the finished job {id, source, report, series}
   samples: [],
   applyParams: null,
+  quiz: null, // {answer: [effects] | "none" | "outside"} while a puzzle is unrevealed
+};
+
+/** Effects of the library per data kind (MODEL.md §7), for the quiz's choices. */
+const LIBRARY = {
+  timeseries: ["viscous", "asymmetry", "offset", "drift", "inertia", "ripple", "lag", "backlash"],
+  steady: ["viscous", "asymmetry", "offset"],
+  breakaway: ["viscous", "asymmetry", "inertia", "dwell", "detection"],
 };
 const waiting = [];
 const $ = (id) => document.getElementById(id);
@@ -251,6 +259,9 @@ async function finish(job, generation) {
   if (job.status === "done") {
     setProgress(1, `done in ${formatNumber(job.report.seconds ?? 0, 3)} s`);
     panel.result = job;
+    const sample = panel.source?.kind === "sample"
+      ? panel.samples.find((s) => s.name === panel.source.name) : null;
+    if (sample?.quiz) startQuiz(job); else $("quiz").hidden = true;
     await showResults(job);
     if (generation !== panel.generation) return;
     setPanelState("done");
@@ -286,6 +297,9 @@ function cancelFit() {
 
 function clearResults() {
   panel.result = null;
+  panel.quiz = null;
+  $("quiz").hidden = true;
+  $("fit-results").classList.remove("quiz-hidden");
   const results = $("fit-results");
   results.hidden = true;
   for (const div of results.querySelectorAll(".fit-plot")) {
@@ -421,6 +435,52 @@ function plotCard(id, title, caption) {
     element("figcaption", { text: caption }));
 }
 
+// ---------------------------------------------------------------------------------
+// the quiz: a mystery sample shows the data and the base model first; the diagnosis
+// only after a guess
+// ---------------------------------------------------------------------------------
+
+/** The right answer of a finished report: its effects, "none" or "outside". */
+export function quizAnswer(report) {
+  if (report.effects.length) return report.effects;
+  return report.unexplained ? "outside" : "none";
+}
+
+/** Whether `guess` (an effect name, "none" or "outside") is right for `report`. */
+export function quizRight(guess, report) {
+  const answer = quizAnswer(report);
+  return Array.isArray(answer) ? answer.includes(guess) : guess === answer;
+}
+
+function startQuiz(job) {
+  panel.quiz = { report: job.report };
+  const select = $("quiz-guess");
+  select.replaceChildren(element("option", { value: "", text: "(choose)" }),
+    ...LIBRARY[job.report.kind].map((e) => element("option", { value: e, text: e })),
+    element("option", { value: "none", text: "nothing: the base model explains it" }),
+    element("option", { value: "outside", text: "something the library does not have" }));
+  $("quiz-reveal").disabled = true;
+  $("quiz-result").textContent = "";
+  $("quiz").hidden = false;
+  $("fit-results").classList.add("quiz-hidden");
+}
+
+async function revealQuiz() {
+  const guess = $("quiz-guess").value;
+  if (!panel.quiz || !guess || !panel.result) return;
+  const report = panel.quiz.report;
+  const answer = quizAnswer(report);
+  const truth = Array.isArray(answer) ? `the data hold ${answer.join(" and ")}`
+    : answer === "none" ? "nothing is missing: the base model explains the data"
+      : "the residual keeps structure that no effect of the library explains";
+  $("quiz-result").textContent = quizRight(guess, report)
+    ? `Right: ${truth}.` : `Not this time: ${truth}.`;
+  $("quiz-result").dataset.right = String(quizRight(guess, report));
+  panel.quiz = null;
+  $("fit-results").classList.remove("quiz-hidden");
+  await showResults(panel.result);
+}
+
 async function showResults(job) {
   const report = job.report;
   renderSummary(job);
@@ -428,6 +488,12 @@ async function showResults(job) {
   renderParamTable(report);
   renderSteps(report);
   const figures = fitFigures(job);
+  if (panel.quiz) {
+    // before the reveal: the data, the base model and its residual only
+    figures.model.data = figures.model.data.filter((t) => t.name !== "final model");
+    figures.residual.data = figures.residual.data.filter((t) => !t.name.startsWith("after"));
+    figures.effects = [];
+  }
   const effectPlots = $("fit-effect-plots");
   effectPlots.replaceChildren(...figures.effects.map(({ effect, regressor }) => plotCard(
     `fit-plot-effect-${effect}`, `${effect}: residual against ${regressor}`,
@@ -553,6 +619,10 @@ export function initDataPanel({ applyParams }) {
   $("use-params").addEventListener("click", useParameters);
   $("download-report").addEventListener("click", downloadReport);
   $("download-residuals").addEventListener("click", downloadResiduals);
+  $("quiz-guess").addEventListener("change", () => {
+    $("quiz-reveal").disabled = !$("quiz-guess").value;
+  });
+  $("quiz-reveal").addEventListener("click", revealQuiz);
   wireDropZone();
   // leaving the page mid-fit frees the server's worker
   window.addEventListener("pagehide", () => {

@@ -31,8 +31,8 @@ def test_measured_sample_keeps_its_attribution(client):
     ("mystery-b", ["ripple"], False),
     ("mystery-c", ["asymmetry"], False),
     ("mystery-d", ["dwell"], False),
-    ("plain", [], False),
-    ("outside", [], True),
+    ("mystery-e", [], False),
+    ("mystery-f", [], True),
 ])
 def test_samples_hold_what_they_promise(client, name, effects, unexplained):
     response = client.get(f"/api/samples/{name}.csv")
@@ -44,3 +44,19 @@ def test_samples_hold_what_they_promise(client, name, effects, unexplained):
     report = identify(data)
     assert report["effects"] == effects
     assert report["unexplained"] is unexplained
+
+
+EFFECT_WORDS = ("viscous", "asymmetr", "offset", "drift", "inertia", "ripple", "wobbl", "lag",
+                "backlash", "play", "dwell", "reversal", "detection", "nothing missing",
+                "library", "base model")
+
+
+def test_quiz_descriptions_name_no_effect(client):
+    for sample in client.get("/api/samples").json():
+        if not sample["quiz"]:
+            continue
+        text = (sample["title"] + " " + sample["description"]).lower()
+        assert not [w for w in EFFECT_WORDS if w in text], sample["name"]
+        text = client.get(f"/api/samples/{sample['name']}.csv").text
+        comments = " ".join(line for line in text.splitlines()[:5] if line.startswith("#"))
+        assert not [w for w in EFFECT_WORDS if w in comments.lower()], sample["name"]

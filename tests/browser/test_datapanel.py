@@ -285,6 +285,17 @@ def test_a_sample_loads_and_fits(explorer):
     assert sample.description in page.locator("#sample-description").inner_text()
     page.get_by_role("button", name="Fit", exact=True).click()
     assert wait_for(explorer, "done", "error") == "done"
+    # a mystery is a quiz: the diagnosis shows only after a guess
+    assert not page.locator("#fit-effects").is_visible()
+    model = plot_traces(explorer, "fit-plot-model")
+    assert set(model) == {"measured", "base model"}
+    residual = plot_traces(explorer, "fit-plot-residual")
+    assert set(residual) == {"before (base model)"}
+    reveal = page.get_by_role("button", name="Reveal the diagnosis")
+    assert reveal.is_disabled()
+    page.get_by_label("Your guess", exact=True).select_option("backlash")
+    reveal.click()
+    assert page.locator("#quiz-result").inner_text() == "Not this time: the data hold ripple."
     assert shown_effects(explorer) == ["ripple"]
     assert_error_table_matches(explorer, report)
     assert "mystery-b.csv" in page.locator("#fit-meta").inner_text()
@@ -366,3 +377,23 @@ def test_panel_shows_warnings_undetermined_parameters_verdicts_and_structure(exp
     assert "not determined" in cell.inner_text()
     assert page.locator('#fit-param-table tr[data-param="Fs"] td[data-model="final"]'
                         ).get_attribute("data-determined") == "true"
+
+
+def test_quiz_right_guess_and_the_plain_sample(explorer):
+    sample = SAMPLES["mystery-e"]  # nothing missing
+    explorer.open("?sim=0")
+    page = explorer.page
+    page.get_by_label("Sample", exact=True).select_option(label=sample.title)
+    page.get_by_role("button", name="Fit", exact=True).click()
+    assert wait_for(explorer, "done", "error") == "done"
+    assert page.locator("#quiz").is_visible()
+    page.get_by_label("Your guess", exact=True).select_option("none")
+    page.get_by_role("button", name="Reveal the diagnosis").click()
+    result = page.locator("#quiz-result")
+    assert result.get_attribute("data-right") == "true"
+    assert result.inner_text().startswith("Right: nothing is missing")
+    # a file upload is no quiz
+    upload(explorer, synthetic_csv("steady", ("offset",), seed=1))
+    assert wait_for(explorer, "done", "error") == "done"
+    assert not page.locator("#quiz").is_visible()
+    assert shown_effects(explorer) == ["offset"]

@@ -83,3 +83,4 @@ class SampleInfo(BaseModel):
     title: str
     kind: Literal["timeseries", "steady", "breakaway"]
     description: str
+    quiz: bool = False

@@ -266,6 +266,9 @@ class RampResponse(BaseModel):
 class Preset(BaseModel):
     name: str
     description: str
+    units: Literal["normalised", "SI"] = Field(
+        description="normalised: the note's s = 1 scaling (velocities in presliding "
+                    "distances per second); SI: metres, newtons, seconds")
     params: dict[str, float | str]
 
 

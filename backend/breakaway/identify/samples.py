@@ -18,6 +18,8 @@ class Sample:
     title: str
     kind: str
     description: str
+    #: a puzzle for the data panel's quiz: the description names no effect
+    quiz: bool = False
 
     def csv(self) -> str:
         return _MAKERS[self.name]()
@@ -27,8 +29,7 @@ def _mystery(kind, effects, seed):
     def make():
         data, _ = make_dataset(kind, effects, seed=seed,
                                n=_SAMPLE_ROWS if kind == "timeseries" else None)
-        return to_csv(data, comment="synthetic sample (seeded); which effect is in it is "
-                                    "for the fit to find")
+        return to_csv(data, comment="synthetic sample (seeded)")
     return make
 
 
@@ -46,17 +47,19 @@ SAMPLES: dict[str, Sample] = {s.name: s for s in (
     Sample("damper", "Measured: friction damper, 1 Hz", "timeseries",
            "4 s of a banded rotary friction damper under a 1 Hz sine (ARTS-Lab, CC BY-SA 4.0)."),
     Sample("mystery-a", "Mystery A (time series)", "timeseries",
-           "An actuator moved back and forth; something shows right after each reversal."),
+           "An actuator moved back and forth in strokes of different lengths and speeds.",
+           quiz=True),
     Sample("mystery-b", "Mystery B (time series)", "timeseries",
-           "The same actuator; the force wobbles as it slides."),
+           "Another record of an actuator moved back and forth.", quiz=True),
     Sample("mystery-c", "Mystery C (Stribeck curve)", "steady",
-           "Steady sliding at many speeds, both directions."),
+           "Steady sliding at many speeds, both directions.", quiz=True),
     Sample("mystery-d", "Mystery D (break-away)", "breakaway",
-           "Break-away forces at many rates after different rest times."),
-    Sample("plain", "Plain: nothing missing (time series)", "timeseries",
-           "Data from the base model only: the fit should add nothing."),
-    Sample("outside", "Outside the library (time series)", "timeseries",
-           "An effect the library does not know: the fit should say so."),
+           "Break-away forces at many rates, both directions, after different rest times.",
+           quiz=True),
+    Sample("mystery-e", "Mystery E (time series)", "timeseries",
+           "A third actuator record: strokes back and forth.", quiz=True),
+    Sample("mystery-f", "Mystery F (time series)", "timeseries",
+           "A fourth actuator record: strokes back and forth.", quiz=True),
 )}
 
 _MAKERS = {
@@ -65,6 +68,6 @@ _MAKERS = {
     "mystery-b": _mystery("timeseries", ("ripple",), 22),
     "mystery-c": _mystery("steady", ("asymmetry",), 23),
     "mystery-d": _mystery("breakaway", ("dwell",), 24),
-    "plain": _mystery("timeseries", (), 25),
-    "outside": _outside_library,
+    "mystery-e": _mystery("timeseries", (), 25),
+    "mystery-f": _outside_library,
 }

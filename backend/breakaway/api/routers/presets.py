@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from fastapi import APIRouter
 
-from ...params import DEFAULTS, LUGRE_1995, PRESET_DESCRIPTIONS, PRESETS
+from ...params import DEFAULTS, LUGRE_1995, NORMALISED_PRESETS, PRESET_DESCRIPTIONS, PRESETS
 from ..schemas import Preset, PresetsResponse
 
 router = APIRouter(prefix="/api", tags=["presets"])
@@ -13,7 +13,9 @@ router = APIRouter(prefix="/api", tags=["presets"])
 @router.get("/presets", response_model=PresetsResponse)
 def presets() -> PresetsResponse:
     return PresetsResponse(
-        presets=[Preset(name=name, description=PRESET_DESCRIPTIONS.get(name, ""), params=params)
+        presets=[Preset(name=name, description=PRESET_DESCRIPTIONS.get(name, ""),
+                        units="normalised" if name in NORMALISED_PRESETS else "SI",
+                        params=params)
                  for name, params in PRESETS.items()],
         defaults=DEFAULTS,
         lugre_1995=LUGRE_1995,

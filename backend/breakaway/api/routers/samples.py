@@ -14,8 +14,8 @@ router = APIRouter(prefix="/api", tags=["samples"])
 
 @router.get("/samples", response_model=list[SampleInfo])
 def list_samples() -> list[SampleInfo]:
-    return [SampleInfo(name=s.name, title=s.title, kind=s.kind, description=s.description)
-            for s in SAMPLES.values()]
+    return [SampleInfo(name=s.name, title=s.title, kind=s.kind, description=s.description,
+                       quiz=s.quiz) for s in SAMPLES.values()]
 
 
 @router.get("/samples/{name}.csv", response_class=PlainTextResponse)
