@@ -19,6 +19,9 @@ import {
   explainBreakaway, rampBody, rampFigure, simulationPhaseTrace,
 } from "./ramp.js";
 import {
+  TOUR, pinnedTraces, sweepTraces, sweepValues, tourState, withTraces,
+} from "./teach.js";
+import {
   defaultState, exploreBody, fromQuery, matchingPreset, presetState, simulateBody, toQuery,
 } from "./state.js";
 
@@ -54,6 +57,9 @@ const app = {
   rampTimer: null,
   cursor: null, // play: the time cursor [s]
   playing: null, // requestAnimationFrame id
+  pinned: null, // plot id -> faded reference traces
+  sweep: null, // {name, label, values, frames}
+  tour: -1, // the tour's current step
 };
 
 const waiting = { ready: [], sim: [], ramp: [] };
@@ -177,9 +183,74 @@ function react(id, figure) {
 }
 
 function draw() {
-  const figs = figures(app.frame, app.state, app.sim, app.state.lugre ? app.lugre : null);
-  figs.phase = withSimulatedPath(figs.phase);
+  const figs = decorate(figures(app.frame, app.state, app.sim, app.state.lugre ? app.lugre : null));
   return Promise.all(PLOT_IDS.map((id) => react(id, figs[id])));
+}
+
+/** The model figures with what the person added: the simulated path, pinned
+ *  references, a sweep. */
+function decorate(figs, ids = PLOT_IDS) {
+  const out = { ...figs };
+  if (ids.includes("phase")) out.phase = withSimulatedPath(figs.phase);
+  if (app.sweep) {
+    const traces = sweepTraces(app.sweep, app.state, app.sweep.label);
+    for (const id of ["breakaway", "hysteresis"]) {
+      if (ids.includes(id)) out[id] = withTraces(out[id], traces[id]);
+    }
+  }
+  if (app.pinned) {
+    for (const id of ids) out[id] = withTraces(out[id], app.pinned[id]);
+  }
+  return out;
+}
+
+function pinCurves() {
+  if (!app.frame) return;
+  const figs = figures(app.frame, app.state, null, null);
+  app.pinned = Object.fromEntries(PLOT_IDS.map((id) => [id, pinnedTraces(figs[id])]));
+  $("compare-clear").disabled = false;
+  draw();
+}
+
+function clearPinned() {
+  app.pinned = null;
+  $("compare-clear").disabled = true;
+  draw();
+}
+
+async function runSweep() {
+  const name = $("sweep-param").value;
+  const spec = PARAMS.find((p) => p.name === name);
+  if (!spec || !app.frame) return;
+  const values = sweepValues(name, app.state);
+  $("sweep-status").textContent = `Sweeping ${spec.label} over ${values.join(", ")}…`;
+  try {
+    const frames = await Promise.all(values.map((value) => postJSON("/api/explore",
+      exploreBody({ ...app.state, [name]: value }))));
+    app.sweep = { name, label: spec.label.split(" [")[0], values, frames };
+    $("sweep-clear").disabled = false;
+    $("sweep-status").textContent = `${values.length} curves of ${spec.label} on the `
+      + "break-away plot and the hysteresis loop.";
+    await draw();
+  } catch (error) {
+    $("sweep-status").textContent = `The sweep failed: ${error.message}`;
+  }
+}
+
+function clearSweep() {
+  app.sweep = null;
+  $("sweep-clear").disabled = true;
+  $("sweep-status").textContent = "";
+  draw();
+}
+
+function showTourStep(index) {
+  app.tour = index;
+  const last = index === TOUR.length - 1;
+  $("tour-step").textContent = `Step ${index + 1} of ${TOUR.length}: ${TOUR[index].text}`;
+  $("tour-next").disabled = last;
+  $("tour-start").textContent = "Restart the tour";
+  setState(tourState(index, app.presets, app.state));
 }
 
 /** The phase figure with the simulated ramp's path (z, ẋ) over the E12 family. */
@@ -247,7 +318,7 @@ async function runRamp() {
 function drawRamp() {
   if (!app.ramp || !app.frame) return Promise.resolve();
   $("ba-explain").textContent = explainBreakaway(app.ramp, app.state);
-  const phase = withSimulatedPath(figures(app.frame, app.state, null, null).phase);
+  const phase = decorate({ phase: figures(app.frame, app.state, null, null).phase }, ["phase"]).phase;
   return Promise.all([
     react("ramp", rampFigure(app.ramp, app.state, app.cursor)),
     react("phase", phase),
@@ -290,8 +361,8 @@ function togglePlay() {
 
 function drawBreakaway() {
   if (!app.frame) return Promise.resolve();
-  return react("breakaway", breakawayFigure(app.frame, app.state, app.sim,
-    app.state.lugre ? app.lugre : null));
+  return react("breakaway", decorate({ breakaway: breakawayFigure(app.frame, app.state,
+    app.sim, app.state.lugre ? app.lugre : null) }, ["breakaway"]).breakaway);
 }
 
 function showServerError(error) {
@@ -409,6 +480,8 @@ function updatePresetSelect() {
   $("preset").value = name;
   const preset = app.presets.find((p) => p.name === name);
   $("preset-description").textContent = preset ? preset.description : "";
+  // the note's s = 1 scaling: say so wherever these numbers are read
+  $("units-note").hidden = !(preset ? preset.units === "normalised" : Number(app.state.s) === 1);
 }
 
 function wireControls() {
@@ -448,6 +521,12 @@ function wireControls() {
   });
   $("simulate").addEventListener("click", () => scheduleSim(true));
   $("ramp-play").addEventListener("click", togglePlay);
+  $("compare-pin").addEventListener("click", pinCurves);
+  $("compare-clear").addEventListener("click", clearPinned);
+  $("sweep-run").addEventListener("click", runSweep);
+  $("sweep-clear").addEventListener("click", clearSweep);
+  $("tour-start").addEventListener("click", () => showTourStep(0));
+  $("tour-next").addEventListener("click", () => showTourStep(Math.min(app.tour + 1, TOUR.length - 1)));
   $("preset").addEventListener("change", () => {
     const preset = app.presets.find((p) => p.name === $("preset").value);
     if (preset) setState(presetState(preset, app.defaults, app.state));
@@ -516,6 +595,13 @@ async function init() {
     option.title = preset.description;
     select.append(option);
   }
+  for (const spec of PARAMS) {
+    const option = document.createElement("option");
+    option.value = spec.name;
+    option.textContent = spec.label;
+    $("sweep-param").append(option);
+  }
+  $("sweep-param").value = "V";
   app.state = fromQuery(window.location.search, app.defaults);
   window.history.replaceState(null, "", toQuery(app.state));
   writeControls(app.state);
