@@ -14,6 +14,8 @@ const COLORS = {
   curve: "#1f4e99",
   sim: "#111111",
   lugre: "#8c564b",
+  forward: "#0072b2",
+  backward: "#e69f00",
 };
 
 const F_HAT_LABEL = { Fc: "F̂ = Fc", Fs: "F̂ = Fs", avg: "F̂ = avg", self: "F̂ = self" };
@@ -50,13 +52,51 @@ export function stribeckFigure(frame) {
   return { data, layout: baseLayout("stribeck", { showlegend: false }) };
 }
 
-export function hysteresisFigure(frame) {
-  const data = [{
-    type: "scatter", mode: "lines", name: "F(x)",
-    x: frame.hysteresis.x, y: frame.hysteresis.F,
-    line: { color: COLORS.curve, width: 1.8 },
-  }];
-  return { data, layout: baseLayout("hysteresis", { showlegend: false }) };
+/** The loop's branches coloured by the direction of travel (blue moving +x, orange
+ *  moving −x: a colour-blind-safe pair), with arrowheads along them. */
+export function hysteresisFigure(frame, state = null) {
+  const { x, F } = frame.hysteresis;
+  const forward = { x: [], y: [] };
+  const backward = { x: [], y: [] };
+  const arrows = { x: [], y: [], symbol: [] };
+  const every = Math.max(1, Math.floor(x.length / 24));
+  let previous = 0;
+  for (let i = 1; i < x.length; i += 1) {
+    const dir = Math.sign(x[i] - x[i - 1]) || previous;
+    const branch = dir > 0 ? forward : backward;
+    const other = dir > 0 ? backward : forward;
+    if (dir !== previous) {
+      // start the branch at the reversal point, and break the other one there
+      branch.x.push(x[i - 1]);
+      branch.y.push(F[i - 1]);
+      other.x.push(null);
+      other.y.push(null);
+    }
+    branch.x.push(x[i]);
+    branch.y.push(F[i]);
+    if (i % every === 0) {
+      arrows.x.push(x[i]);
+      arrows.y.push(F[i]);
+      arrows.symbol.push(dir > 0 ? "triangle-right" : "triangle-left");
+    }
+    previous = dir;
+  }
+  const data = [
+    { type: "scatter", mode: "lines", name: "moving +x", x: forward.x, y: forward.y,
+      connectgaps: false, line: { color: COLORS.forward, width: 1.8 },
+      hovertemplate: "moving +x<br>x = %{x:.3g} m<br>F = %{y:.3g} N<extra></extra>" },
+    { type: "scatter", mode: "lines", name: "moving −x", x: backward.x, y: backward.y,
+      connectgaps: false, line: { color: COLORS.backward, width: 1.8 },
+      hovertemplate: "moving −x<br>x = %{x:.3g} m<br>F = %{y:.3g} N<extra></extra>" },
+    { type: "scatter", mode: "markers", name: "direction of travel", x: arrows.x, y: arrows.y,
+      hoverinfo: "skip", showlegend: false,
+      marker: { symbol: arrows.symbol, size: 8, color: arrows.symbol.map(
+        (s) => (s === "triangle-right" ? COLORS.forward : COLORS.backward)) } },
+  ];
+  const layout = baseLayout("hysteresis", {
+    legend: { x: 0, xanchor: "left", y: 1, bgcolor: "rgba(255,255,255,0.75)" },
+  });
+  return { data, layout };
 }
 
 /**
@@ -197,7 +237,7 @@ export function breakawayFigure(frame, state, sim = null, lugre = null) {
 export function figures(frame, state, sim, lugre) {
   return {
     stribeck: stribeckFigure(frame),
-    hysteresis: hysteresisFigure(frame),
+    hysteresis: hysteresisFigure(frame, state),
     phase: phaseFigure(frame, state),
     breakaway: breakawayFigure(frame, state, sim, lugre),
   };
