@@ -74,21 +74,33 @@ export function explorerParams(report, specs = PARAMS) {
   values.sigma = report.effects.includes("viscous") && Number.isFinite(fitted.sigma)
     ? roundSignificant(fitted.sigma, DIGITS) : 0;
   if (values.Fs < values.Fc) values.Fs = values.Fc; // rounding never does this; be safe
-  const outside = [];
+  // sliders reach the data's scale (kN for a damper): a range is widened by decades
+  const ranges = {};
+  const widened = [];
   for (const [name, value] of Object.entries(values)) {
     const spec = specs.find((s) => s.name === name);
-    if (!spec) continue;
-    const low = spec.scale === "log0" ? 0 : spec.min;
-    if (value < low || value > spec.max) {
-      outside.push(`${SYMBOLS[name]} = ${formatNumber(value, 4)} (slider ${low} … ${spec.max})`);
+    if (!spec || spec.scale === "linear" || !(value > 0)) continue;
+    const min = value < spec.min ? 10 ** Math.floor(Math.log10(value / 10)) : spec.min;
+    const max = value > spec.max ? 10 ** Math.ceil(Math.log10(value * 10)) : spec.max;
+    if (min !== spec.min || max !== spec.max) {
+      ranges[name] = { min, max };
+      const low = spec.scale === "log0" ? 0 : min;
+      widened.push(`${SYMBOLS[name]} ${low} … ${max}`);
     }
   }
-  if (outside.length) {
-    notes.push(`outside the slider range, kept in the box with the slider at its end: ${outside.join(", ")}`);
-  }
+  if (widened.length) notes.push(`slider ranges widened to the data's scale: ${widened.join(", ")}`);
   const others = Object.keys(fitted).filter((name) => !(name in SYMBOLS));
   if (others.length) notes.push(`the explorer has no control for ${others.join(", ")}`);
-  return { values, notes };
+  return { values, notes, ranges };
+}
+
+/** The measured points to overlay in the explorer: on the Stribeck plot (steady data),
+ *  the break-away plot (break-away data) or the hysteresis loop (a time series). */
+export function measuredOverlay(job) {
+  const columns = job.series.columns;
+  const plot = { steady: "stribeck", breakaway: "breakaway", timeseries: "hysteresis" }[job.report.kind];
+  const axis = { stribeck: "v", breakaway: "k", hysteresis: "x" }[plot];
+  return { plot, x: columns[axis], y: columns.measured };
 }
 
 /** The message of a bad file: the engine's sentence, with line and column if it lacks them. */
@@ -533,8 +545,8 @@ async function downloadResiduals() {
 function useParameters() {
   const job = panel.result;
   if (!job || !panel.applyParams) return;
-  const { values, notes } = explorerParams(job.report);
-  const applied = panel.applyParams(values);
+  const { values, notes, ranges } = explorerParams(job.report);
+  const applied = panel.applyParams(values, { ranges, measured: measuredOverlay(job) });
   const set = Object.keys(values).map((name) => `${SYMBOLS[name]} = ${values[name]}`);
   $("use-note").textContent = applied === false
     ? "The explorer is not ready yet; try again in a moment."

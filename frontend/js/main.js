@@ -60,6 +60,7 @@ const app = {
   pinned: null, // plot id -> faded reference traces
   sweep: null, // {name, label, values, frames}
   tour: -1, // the tour's current step
+  measured: null, // {plot, x, y}: the fitted data's points
 };
 
 const waiting = { ready: [], sim: [], ramp: [] };
@@ -200,6 +201,12 @@ function decorate(figs, ids = PLOT_IDS) {
   }
   if (app.pinned) {
     for (const id of ids) out[id] = withTraces(out[id], app.pinned[id]);
+  }
+  if (app.measured && ids.includes(app.measured.plot)) {
+    out[app.measured.plot] = withTraces(out[app.measured.plot], [{
+      type: "scattergl", mode: "markers", name: "measured", x: app.measured.x, y: app.measured.y,
+      marker: { color: "rgba(90, 90, 90, 0.45)", size: 4 }, hoverinfo: "skip",
+    }]);
   }
   return out;
 }
@@ -573,9 +580,15 @@ function wireTabs() {
   }
 }
 
-/** The data panel's "Use these parameters": fitted values into the state (and the URL). */
-function applyFitted(values) {
+/** The data panel's "Use these parameters": fitted values into the state (and the URL),
+ *  slider ranges widened to the data's scale, and the measured points overlaid. */
+function applyFitted(values, { ranges = {}, measured = null } = {}) {
   if (!app.state || !app.defaults) return false;
+  for (const [name, range] of Object.entries(ranges)) {
+    const spec = PARAMS.find((p) => p.name === name);
+    if (spec) Object.assign(spec, range);
+  }
+  app.measured = measured;
   setState({ ...app.state, ...values });
   return true;
 }

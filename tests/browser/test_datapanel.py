@@ -228,11 +228,16 @@ def test_use_these_parameters_moves_the_sliders(explorer):
     assert sliders["V"] == slider_position(fitted["V"], 1e-4, 1e4)
     assert sliders["delta"] == round((fitted["delta"] + 4) / 0.05)
     assert all(str(sliders[name]) != before[name] for name in before)
-    # σ ≈ 54 N·s/m is beyond its slider (≤ 10): the box holds it, the slider is at its end
-    assert fitted["sigma"] > 10 and sliders["sigma"] == 1000
+    # σ ≈ 54 N·s/m is beyond its slider (≤ 10): the range widens to the data's scale
+    assert fitted["sigma"] > 10
     note = page.locator("#use-note").inner_text()
-    assert "outside the slider range" in note and "σ = 54.38 (slider 0 … 10)" in note
+    assert "slider ranges widened to the data's scale: σ 0 … 1000" in note
+    assert sliders["sigma"] == 1 + round((math.log10(fitted["sigma"]) + 4) / 7 * 999)
     assert_plots_match_model(explorer, state)
+    # the measured points sit on the Stribeck plot
+    measured = explorer.traces("stribeck")["measured"]
+    data = parse_csv(text.encode())
+    assert sorted(values(measured["y"])) == pytest.approx(sorted(data.columns["F"]), rel=1e-9)
 
 
 def test_new_fit_replaces_a_running_one_and_cancel_ends_in_cancelled(explorer, server_url):
