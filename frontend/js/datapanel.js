@@ -11,7 +11,9 @@
 import { ApiError, getJSON } from "./api.js";
 import { PARAMS, roundSignificant } from "./controls.js";
 import { download } from "./export.js";
-import { fitFigures, formatNumber, formatWithError, paramLabel } from "./fitplots.js";
+import {
+  fitFigures, formatNumber, formatWithError, modelCaption, paramLabel,
+} from "./fitplots.js";
 
 const POLL_MS = 200;
 const BUSY_RETRY_MS = 400; // 429: the server's fit workers are all taken
@@ -500,6 +502,7 @@ async function showResults(job) {
   renderParamTable(report);
   renderSteps(report);
   const figures = fitFigures(job);
+  $("fit-model-caption").textContent = modelCaption(report.kind);
   if (panel.quiz) {
     // before the reveal: the data, the base model and its residual only
     figures.model.data = figures.model.data.filter((t) => t.name !== "final model");

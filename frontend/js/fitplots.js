@@ -147,6 +147,17 @@ function residualTraces(series, x, dense) {
   ];
 }
 
+/** The caption of the model figure, matching how each kind is drawn. */
+export function modelCaption(kind) {
+  if (kind === "timeseries") {
+    return "measured (grey line), base model (red, dashed), final model with the accepted effects (blue)";
+  }
+  const models = kind === "steady"
+    ? "base model (red, dashed line), final model with the accepted effects (blue line)"
+    : "base model (red open circles), final model with the accepted effects (blue crosses)";
+  return `measured (grey dots), ${models}`;
+}
+
 /** Residual (measured − model) before and after against the main axis. */
 export function residualFigure(series, kind, revision) {
   const x = column(series, series.axis);
@@ -166,7 +177,8 @@ export function effectFigure(series, kind, effect, revision) {
   };
   // dwell acts through ln(1 + dwell/τ_d): its signature reads best on a log axis
   if (regressor === "dwell" && x.length && x.every((value) => value > 0)) {
-    figure.layout.xaxis.type = "log";
+    // one labelled tick per decade, as plain numbers (0.2, 2, 20 s), not 2/5 minor labels
+    Object.assign(figure.layout.xaxis, { type: "log", dtick: 1, tickformat: "~g" });
   }
   return figure;
 }
