@@ -45,6 +45,33 @@ FIG3_RATES: tuple[float, ...] = tuple(0.01 + 2.0 * i for i in range(15))
 
 F_HAT_CHOICES = ("Fc", "Fs", "avg", "self")
 
+#: The explorer's controls, in the order of the form: the one table of each parameter's
+#: symbol, unit, slider range and scale (``log``; ``log0``: log with 0 at the left end;
+#: ``linear`` with ``step``), help text and fieldset. Served by ``GET /api/presets``.
+CONTROLS: tuple[dict[str, float | str], ...] = (
+    {"name": "Fc", "symbol": "Fc", "unit": "N", "help": "Coulomb level, > 0",
+     "group": "stribeck", "scale": "log", "min": 0.01, "max": 100},
+    {"name": "Fs", "symbol": "Fs", "unit": "N", "help": "Stribeck (stiction) level, ≥ Fc",
+     "group": "stribeck", "scale": "log", "min": 0.01, "max": 100},
+    {"name": "V", "symbol": "V", "unit": "m/s", "help": "Stribeck velocity, > 0",
+     "group": "stribeck", "scale": "log", "min": 1e-4, "max": 1e4},
+    {"name": "delta", "symbol": "δ", "unit": "", "help": "shape exponent, |δ| ≥ 0.05",
+     "group": "stribeck", "scale": "linear", "min": -4, "max": 4, "step": 0.05},
+    {"name": "sigma", "symbol": "σ", "unit": "N·s/m",
+     "help": "viscous coefficient, ≥ 0 (slider's left end is 0)",
+     "group": "stribeck", "scale": "log0", "min": 1e-4, "max": 10},
+    {"name": "k", "symbol": "k", "unit": "N/s", "help": "actuation force rate, > 0",
+     "group": "presliding", "scale": "log", "min": 0.01, "max": 30},
+    {"name": "s", "symbol": "s", "unit": "1/m",
+     "help": "presliding scale (1/s is the presliding distance), > 0",
+     "group": "presliding", "scale": "log", "min": 0.01, "max": 1e6},
+    {"name": "z_ba", "symbol": "z*", "unit": "",
+     "help": "presliding fraction taken as break-away, in (0, 1)",
+     "group": "presliding", "scale": "linear", "min": 0.01, "max": 0.99, "step": 0.01},
+    {"name": "m", "symbol": "m", "unit": "kg", "help": "moving mass of the ramp experiment, > 0",
+     "group": "dynamics", "scale": "log", "min": 1e-6, "max": 10},
+)
+
 #: Named presets for the explorer (each a full parameter set).
 PRESETS: dict[str, dict[str, float | str]] = {
     "fig5": {**DEFAULTS},

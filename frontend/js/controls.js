@@ -4,27 +4,20 @@
 
 const STEPS = 1000; // slider positions of a log or linear control
 
-/** The numeric parameters, in the order of the form. `group` is the fieldset. */
-export const PARAMS = [
-  { name: "Fc", label: "Fc [N]", help: "Coulomb level, > 0", group: "stribeck",
-    scale: "log", min: 0.01, max: 100 },
-  { name: "Fs", label: "Fs [N]", help: "Stribeck (stiction) level, ≥ Fc", group: "stribeck",
-    scale: "log", min: 0.01, max: 100 },
-  { name: "V", label: "V [m/s]", help: "Stribeck velocity, > 0", group: "stribeck",
-    scale: "log", min: 1e-4, max: 1e4 },
-  { name: "delta", label: "δ (delta)", help: "shape exponent, |δ| ≥ 0.05", group: "stribeck",
-    scale: "linear", min: -4, max: 4, step: 0.05 },
-  { name: "sigma", label: "σ (sigma) [N·s/m]", help: "viscous coefficient, ≥ 0 (slider's left end is 0)",
-    group: "stribeck", scale: "log0", min: 1e-4, max: 10 },
-  { name: "k", label: "k [N/s]", help: "actuation force rate, > 0", group: "presliding",
-    scale: "log", min: 0.01, max: 30 },
-  { name: "s", label: "s [1/m]", help: "presliding scale (1/s is the presliding distance), > 0",
-    group: "presliding", scale: "log", min: 0.01, max: 1e6 },
-  { name: "z_ba", label: "z* (z_ba)", help: "presliding fraction taken as break-away, in (0, 1)",
-    group: "presliding", scale: "linear", min: 0.01, max: 0.99, step: 0.01 },
-  { name: "m", label: "m [kg]", help: "moving mass of the ramp experiment, > 0", group: "dynamics",
-    scale: "log", min: 1e-6, max: 10 },
-];
+/**
+ * The numeric parameters, in the order of the form: filled from the server's one table
+ * (GET /api/presets → parameters) by setParams before the controls are built. Each:
+ * {name, symbol, unit, label, help, group (the fieldset), scale, min, max, step?}.
+ */
+export const PARAMS = [];
+
+/** Fill PARAMS from the server's table; the label is "symbol (name) [unit]". */
+export function setParams(table) {
+  PARAMS.splice(0, PARAMS.length, ...table.map((row) => {
+    const named = row.symbol === row.name ? row.symbol : `${row.symbol} (${row.name})`;
+    return { ...row, label: row.unit ? `${named} [${row.unit}]` : named };
+  }));
+}
 
 export const F_HAT_CHOICES = ["Fc", "Fs", "avg", "self"];
 export const MIN_ABS_DELTA = 0.05;
@@ -173,7 +166,8 @@ export function writeControls(state, { except = null } = {}) {
     const box = document.getElementById(spec.name);
     const range = document.getElementById(`${spec.name}-range`);
     const raw = state[spec.name];
-    if (box !== except) box.value = typeof raw === "number" ? String(raw) : String(raw ?? "");
+    // at most 6 significant digits in the box (the state keeps the full value)
+    if (box !== except) box.value = typeof raw === "number" ? String(roundSignificant(raw, 6)) : String(raw ?? "");
     const value = parseNumber(raw);
     if (range !== except && !Number.isNaN(value)) range.value = String(valueToSlider(spec, value));
   }

@@ -10,7 +10,8 @@
 
 import { ApiError, getJSON, postJSON } from "./api.js";
 import {
-  PARAMS, buildControls, parseNumber, showErrors, sliderToValue, validate, writeControls,
+  PARAMS, buildControls, parseNumber, setParams, showErrors, sliderToValue, validate,
+  writeControls,
 } from "./controls.js";
 import { fitReady, fitReport, initDataPanel } from "./datapanel.js";
 import { exportCsv, exportPng } from "./export.js";
@@ -594,10 +595,11 @@ function applyFitted(values, { ranges = {}, measured = null } = {}) {
 }
 
 async function init() {
+  const response = await getJSON("/api/presets");
+  setParams(response.parameters);
   buildControls(document);
   wireTabs();
   initDataPanel({ applyParams: applyFitted });
-  const response = await getJSON("/api/presets");
   app.defaults = response.defaults;
   app.presets = response.presets;
   const select = $("preset");

@@ -4,13 +4,16 @@
 
 import { PARAMS, parseNumber } from "./controls.js";
 
-export const PARAM_NAMES = PARAMS.map((spec) => spec.name);
+/** The numeric parameters' names (PARAMS is filled from the server at start-up). */
+function paramNames() {
+  return PARAMS.map((spec) => spec.name);
+}
 export const TOGGLES = { sim: true, lugre: false };
 
 /** A full state from the server's defaults (GET /api/presets → defaults). */
 export function defaultState(defaults) {
   const state = { ...TOGGLES };
-  for (const name of PARAM_NAMES) state[name] = defaults[name];
+  for (const name of paramNames()) state[name] = defaults[name];
   state.F_hat = defaults.F_hat;
   return state;
 }
@@ -26,7 +29,7 @@ export function presetState(preset, defaults, current) {
 /** Query string of a state (numbers as typed, so a link reproduces the view exactly). */
 export function toQuery(state) {
   const query = new URLSearchParams();
-  for (const name of PARAM_NAMES) query.set(name, String(state[name]));
+  for (const name of paramNames()) query.set(name, String(state[name]));
   query.set("F_hat", state.F_hat);
   query.set("sim", state.sim ? "1" : "0");
   query.set("lugre", state.lugre ? "1" : "0");
@@ -37,7 +40,7 @@ export function toQuery(state) {
 export function fromQuery(search, defaults) {
   const query = new URLSearchParams(search);
   const state = defaultState(defaults);
-  for (const name of PARAM_NAMES) {
+  for (const name of paramNames()) {
     if (!query.has(name)) continue;
     const text = query.get(name);
     const value = parseNumber(text);
@@ -53,7 +56,7 @@ export function fromQuery(search, defaults) {
 /** Name of the preset whose parameters equal the state's, or "". */
 export function matchingPreset(state, presets) {
   for (const preset of presets) {
-    const same = PARAM_NAMES.every((name) => parseNumber(state[name]) === preset.params[name])
+    const same = paramNames().every((name) => parseNumber(state[name]) === preset.params[name])
       && state.F_hat === preset.params.F_hat;
     if (same) return preset.name;
   }
@@ -63,7 +66,7 @@ export function matchingPreset(state, presets) {
 /** The body of POST /api/explore for a valid state. */
 export function exploreBody(state) {
   const body = { F_hat: state.F_hat };
-  for (const name of PARAM_NAMES) body[name] = parseNumber(state[name]);
+  for (const name of paramNames()) body[name] = parseNumber(state[name]);
   return body;
 }
 

@@ -109,3 +109,16 @@ def test_no_cors_preflight(client):
         "Origin": "https://evil.example", "Access-Control-Request-Method": "POST"})
     assert response.status_code in (404, 405)
     assert "access-control-allow-origin" not in response.headers
+
+
+def test_presets_serve_the_one_parameter_table(client):
+    from breakaway.params import CONTROLS, NORMALISED_PRESETS
+
+    body = client.get("/api/presets").json()
+    assert [row["name"] for row in body["parameters"]] == [row["name"] for row in CONTROLS]
+    for row, served in zip(CONTROLS, body["parameters"]):
+        for key, value in row.items():
+            assert served[key] == value, (row["name"], key)
+    units = {p["name"]: p["units"] for p in body["presets"]}
+    assert {n for n, u in units.items() if u == "normalised"} == set(NORMALISED_PRESETS)
+    assert units["lab-stage"] == "SI"

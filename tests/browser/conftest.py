@@ -100,6 +100,8 @@ class Explorer:
     def open(self, query: str = "") -> "Explorer":
         self.page.goto(f"{self.base_url}/{query}")
         self.ready()
+        # the ramp experiment redraws the phase plot (its simulated path) when it arrives
+        self.page.evaluate("window.breakaway.rampReady()")
         return self
 
     def ready(self) -> None:

@@ -272,8 +272,22 @@ class Preset(BaseModel):
     params: dict[str, float | str]
 
 
+class Control(BaseModel):
+    name: str
+    symbol: str
+    unit: str
+    help: str
+    group: Literal["stribeck", "presliding", "dynamics"]
+    scale: Literal["log", "log0", "linear"]
+    min: float
+    max: float
+    step: float | None = None
+
+
 class PresetsResponse(BaseModel):
     presets: list[Preset]
+    parameters: list[Control] = Field(description="the explorer's controls: one table of "
+                                      "symbols, units, slider ranges and help texts")
     defaults: dict[str, float | str] = Field(description="breakaway.params.DEFAULTS")
     lugre_1995: dict[str, float] = Field(description="LuGre (1995) parameters of /api/simulate")
 

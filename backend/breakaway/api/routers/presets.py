@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from fastapi import APIRouter
 
-from ...params import DEFAULTS, LUGRE_1995, NORMALISED_PRESETS, PRESET_DESCRIPTIONS, PRESETS
+from ...params import CONTROLS, DEFAULTS, LUGRE_1995, NORMALISED_PRESETS, PRESET_DESCRIPTIONS, PRESETS
 from ..schemas import Preset, PresetsResponse
 
 router = APIRouter(prefix="/api", tags=["presets"])
@@ -17,6 +17,7 @@ def presets() -> PresetsResponse:
                         units="normalised" if name in NORMALISED_PRESETS else "SI",
                         params=params)
                  for name, params in PRESETS.items()],
+        parameters=list(CONTROLS),
         defaults=DEFAULTS,
         lugre_1995=LUGRE_1995,
     )
