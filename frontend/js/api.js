@@ -20,18 +20,38 @@ export class ApiError extends Error {
   }
 }
 
+async function failure(response) {
+  let detail = [];
+  try {
+    detail = (await response.json()).detail;
+  } catch {
+    // not JSON: keep the status only
+  }
+  if (typeof detail === "string") detail = [{ msg: detail }];
+  return new ApiError(response.status, detail);
+}
+
 async function request(url, options) {
   const response = await fetch(url, options);
-  if (!response.ok) {
-    let detail = [];
-    try {
-      detail = (await response.json()).detail;
-    } catch {
-      // not JSON: keep the status only
-    }
-    throw new ApiError(response.status, detail);
-  }
+  if (!response.ok) throw await failure(response);
   return response.json();
+}
+
+/** POST a multipart form; the JSON answer. */
+export function postForm(url, form, signal) {
+  return request(url, { method: "POST", body: form, signal });
+}
+
+/** GET a text resource (a CSV). */
+export async function getText(url, signal) {
+  const response = await fetch(url, { signal });
+  if (!response.ok) throw await failure(response);
+  return response.text();
+}
+
+/** DELETE, never failing (a job that is gone is as good as cancelled). */
+export function deleteResource(url, keepalive = false) {
+  return fetch(url, { method: "DELETE", keepalive }).catch(() => null);
 }
 
 export function postJSON(url, body, signal) {

@@ -2,22 +2,23 @@
 // sample), fit it as a background job, and show the fit, the residuals, the diagnosis
 // and the error before and after.
 //
-// One fit at a time from the page: starting a new one cancels the old. The job runs in
-// a server thread; the page polls it (every POLL_MS, each poll a fetch that never
-// blocks the explorer) and Cancel sends DELETE. #data-panel carries
+// One fit at a time from the page: starting a new one cancels the old. The job's
+// requests (submit, poll, cancel) are fitjob.js's; this module keeps the panel's state
+// and draws it. #data-panel carries
 // data-state="idle|running|done|error|cancelled"; window.breakaway.fitReady() resolves
 // once no fit is running.
 
 import { ApiError, getJSON } from "./api.js";
+import {
+  cancelJob, isActive, pollJob, residualsCsv, sampleFile, submitFit,
+} from "./fitjob.js";
 import { PARAMS, roundSignificant } from "./controls.js";
 import { download } from "./export.js";
+import { fitFigures, formatNumber, modelCaption } from "./fitplots.js";
 import {
-  fitFigures, formatNumber, formatWithError, modelCaption, paramLabel,
-} from "./fitplots.js";
+  element, plotCard, renderErrorTable, renderParamTable, renderSteps, renderSummary,
+} from "./fitview.js";
 
-const POLL_MS = 200;
-const BUSY_RETRY_MS = 400; // 429: the server's fit workers are all taken
-const BUSY_RETRIES = 50;
 const PLOT_CONFIG = {
   responsive: true,
   displaylogo: false,
@@ -148,37 +149,9 @@ function hideError() {
   $("fit-error").textContent = "";
 }
 
-function sleep(ms) {
-  return new Promise((resolve) => { setTimeout(resolve, ms); });
-}
-
 // ---------------------------------------------------------------------------------
-// requests
+// sources
 // ---------------------------------------------------------------------------------
-
-async function jsonOrThrow(response) {
-  if (response.ok) return response.json();
-  let detail = [];
-  try {
-    detail = (await response.json()).detail;
-  } catch {
-    // not JSON
-  }
-  if (typeof detail === "string") detail = [{ msg: detail }];
-  throw new ApiError(response.status, detail);
-}
-
-function jobUrl(id) {
-  return `/api/fit/jobs/${encodeURIComponent(id)}`;
-}
-
-function deleteJob(id, keepalive = false) {
-  return fetch(jobUrl(id), { method: "DELETE", keepalive }).catch(() => null);
-}
-
-function isActive(job) {
-  return job && (job.status === "queued" || job.status === "running");
-}
 
 function sourceName(source) {
   if (source.kind === "file") return source.file.name || "upload.csv";
@@ -187,12 +160,8 @@ function sourceName(source) {
 }
 
 /** The file to upload for the current source (a sample is fetched as text). */
-async function sourceFile(source, signal) {
-  if (source.kind === "file") return source.file;
-  const response = await fetch(`/api/samples/${encodeURIComponent(source.name)}.csv`, { signal });
-  if (!response.ok) throw new Error(`sample ${source.name} could not be loaded (HTTP ${response.status})`);
-  const text = await response.text();
-  return new File([text], `${source.name}.csv`, { type: "text/csv" });
+function sourceFile(source, signal) {
+  return source.kind === "file" ? Promise.resolve(source.file) : sampleFile(source.name, signal);
 }
 
 // ---------------------------------------------------------------------------------
@@ -208,7 +177,7 @@ async function startFit() {
   const controller = new AbortController();
   panel.controller = controller;
   panel.job = null;
-  if (isActive(previous)) deleteJob(previous.id); // the old fit stops at its next checkpoint
+  if (isActive(previous)) cancelJob(previous.id); // the old fit stops at its next checkpoint
   const current = () => generation === panel.generation;
 
   hideError();
@@ -219,26 +188,14 @@ async function startFit() {
   setProgress(null, "uploading");
   try {
     const file = await sourceFile(panel.source, controller.signal);
-    const form = new FormData();
-    form.append("file", file, file.name || "upload.csv");
-    const kind = $("data-kind").value;
-    if (kind) form.append("kind", kind);
-    let job = null;
-    for (let attempt = 0; !job; attempt += 1) {
-      const response = await fetch("/api/fit/jobs", {
-        method: "POST", body: form, signal: controller.signal,
-      });
-      if (response.status === 429 && attempt < BUSY_RETRIES) {
-        if (!current()) return;
-        setProgress(null, "waiting for a free fit worker");
-        await sleep(BUSY_RETRY_MS);
-        if (!current()) return;
-        continue;
-      }
-      job = await jsonOrThrow(response);
-    }
+    const job = await submitFit(file, $("data-kind").value, {
+      signal: controller.signal,
+      isCurrent: current,
+      onWaiting: () => setProgress(null, "waiting for a free fit worker"),
+    });
+    if (!job) return;
     if (!current()) {
-      deleteJob(job.id);
+      cancelJob(job.id);
       return;
     }
     panel.job = job;
@@ -255,18 +212,16 @@ async function startFit() {
 }
 
 async function poll(generation, controller) {
-  const current = () => generation === panel.generation;
-  for (;;) {
-    const job = panel.job;
-    setProgress(job.progress, job.status === "queued" ? "waiting for a worker"
-      : `${job.message} (${Math.round(job.progress * 100)} %)`);
-    if (!isActive(job)) break;
-    await sleep(POLL_MS);
-    if (!current()) return;
-    panel.job = await getJSON(jobUrl(job.id), controller.signal);
-    if (!current()) return;
-  }
-  await finish(panel.job, generation);
+  const last = await pollJob(panel.job, {
+    signal: controller.signal,
+    isCurrent: () => generation === panel.generation,
+    onUpdate: (job) => {
+      panel.job = job;
+      setProgress(job.progress, job.status === "queued" ? "waiting for a worker"
+        : `${job.message} (${Math.round(job.progress * 100)} %)`);
+    },
+  });
+  if (last) await finish(last, generation);
 }
 
 async function finish(job, generation) {
@@ -294,7 +249,7 @@ function cancelFit() {
   if (panel.job && isActive(panel.job)) {
     // the job stops at its next checkpoint; polling carries on until it says "cancelled"
     setProgress(panel.job.progress, "cancelling");
-    deleteJob(panel.job.id);
+    cancelJob(panel.job.id);
     return;
   }
   // still uploading: abandon the upload
@@ -321,132 +276,6 @@ function clearResults() {
   }
   $("fit-effect-plots").replaceChildren();
   $("use-note").textContent = "";
-}
-
-function element(tag, attrs = {}, ...children) {
-  const node = document.createElement(tag);
-  for (const [key, value] of Object.entries(attrs)) {
-    if (key === "className") node.className = value;
-    else if (key === "text") node.textContent = value;
-    else node.setAttribute(key, value);
-  }
-  node.append(...children);
-  return node;
-}
-
-function renderSummary(job) {
-  const report = job.report;
-  const headline = $("fit-effects");
-  headline.replaceChildren();
-  if (report.effects.length) {
-    headline.append(`Effect${report.effects.length > 1 ? "s" : ""} found: `);
-    report.effects.forEach((effect, i) => {
-      if (i) headline.append(", ");
-      headline.append(element("strong", { className: "effect-name", "data-effect": effect, text: effect }));
-    });
-  } else if (report.unexplained) {
-    headline.append("No effect of the library explains what the base model misses.");
-  } else {
-    headline.append("No effect missing: the base model explains the data down to the noise floor.");
-  }
-  const verdict = [];
-  verdict.push(report.residual_white
-    ? "The final residual is white: indistinguishable from measurement noise."
-    : "The final residual is not white.");
-  if (report.unexplained) verdict.push("Structure remains that no candidate explains.");
-  const verdictBox = $("fit-verdict");
-  verdictBox.textContent = verdict.join(" ");
-  verdictBox.classList.toggle("unexplained", Boolean(report.unexplained));
-  $("fit-warnings").replaceChildren(...(report.warnings ?? []).map((w) => element("li",
-    { "data-code": w.code, ...(w.parameter ? { "data-param": w.parameter } : {}) },
-    element("strong", { text: w.code }), `: ${w.message}`)));
-  $("fit-meta").textContent = `${job.source}: ${report.kind}, ${report.n} rows`
-    + (job.series.stride > 1 ? ` (the plots show 1 row in ${job.series.stride})` : "")
-    + (report.seconds != null ? `, fitted in ${formatNumber(report.seconds, 3)} s` : "");
-}
-
-function forceUnit(report) {
-  return report.units?.[report.kind === "breakaway" ? "F_ba" : "F"] ?? "N";
-}
-
-function renderErrorTable(report) {
-  const unit = forceUnit(report);
-  const cell = (metric, value) => element("td", { "data-metric": metric, text: formatNumber(value, 4) });
-  const body = $("fit-error-table").tBodies[0];
-  body.replaceChildren(
-    element("tr", {}, element("th", { scope: "row", text: `fit RMSE [${unit}]` }),
-      cell("error_before", report.error_before), cell("error_after", report.error_after)),
-    element("tr", {}, element("th", { scope: "row", text: `held-out RMSE [${unit}]` }),
-      cell("heldout_before", report.heldout.before), cell("heldout_after", report.heldout.after)),
-    element("tr", {}, element("th", { scope: "row", text: `noise floor [${unit}]` }),
-      element("td", { "data-metric": "noise_floor", colspan: "2", text: formatNumber(report.noise_floor, 4) })),
-  );
-}
-
-function renderParamTable(report) {
-  const base = report.base;
-  const final = report.final;
-  const names = [...new Set([...Object.keys(base.params), ...Object.keys(final.params)])];
-  const body = $("fit-param-table").tBodies[0];
-  body.replaceChildren(...names.map((name) => {
-    // rotary data: the report's units replace the linear ones of the label
-    const unit = report.units?.[name];
-    const text = unit ? paramLabel(name).replace(/\[[^\]]*\]/, `[${unit}]`) : paramLabel(name);
-    const label = element("th", { scope: "row", text });
-    const cell = (fit, model) => {
-      if (!(name in fit.params)) return element("td", { "data-model": model, text: "–" });
-      const determined = fit.determined?.[name] !== false;
-      const stderr = fit.stderr?.[name];
-      const text = determined ? formatWithError(fit.params[name], stderr)
-        : formatNumber(fit.params[name], 4)
-          + (stderr == null ? "" : ` ± ${formatNumber(stderr, 2)}`) + " ⚠ not determined";
-      return element("td", { "data-model": model, "data-determined": String(determined),
-        className: determined ? "" : "undetermined", text });
-    };
-    return element("tr", { "data-param": name }, label, cell(base, "base"), cell(final, "final"));
-  }));
-}
-
-function renderSteps(report) {
-  const list = $("fit-steps");
-  list.replaceChildren();
-  for (const step of report.steps) {
-    // the evidence sentence names the signature and the RMSE and BIC it changed
-    list.append(element("li", { "data-effect": step.effect },
-      element("strong", { className: "effect-name", text: step.effect }),
-      `: ${step.evidence.replace(/\.?$/, ".")}`));
-  }
-  if (!report.steps.length) {
-    list.append(element("li", { text: "No step: no candidate passed the tests (BIC, variance "
-      + "explained above the noise floor, held-out error)." }));
-  }
-  const dropped = report.steps.map((s) => s.effect).filter((e) => !report.effects.includes(e));
-  $("fit-dropped").textContent = dropped.length
-    ? `Dropped again as redundant once later effects were in: ${dropped.join(", ")}.` : "";
-  const candidates = report.candidates ?? {};
-  const body = $("fit-candidates").tBodies[0];
-  const number = (value, digits) => (value == null ? "–" : formatNumber(value, digits));
-  body.replaceChildren(...Object.entries(candidates).map(([name, c]) => element("tr",
-    { "data-effect": name, "data-accepted": String(Boolean(c.accepted)) },
-    element("th", { scope: "row", text: name }),
-    element("td", { text: number(c.rmse) }),
-    element("td", { text: number(c.bic, 6) }),
-    element("td", { text: number(c.heldout) }),
-    element("td", { className: "verdict", text: c.accepted ? "accepted" : `not accepted: ${c.reason}` }))));
-  $("fit-candidates-box").hidden = !Object.keys(candidates).length;
-  const structure = report.residual_structure ?? [];
-  $("fit-structure").tBodies[0].replaceChildren(...structure.map((s) => element("tr",
-    { "data-against": s.against },
-    element("th", { scope: "row", text: s.against }),
-    element("td", { text: `${Math.round(100 * s.strength)} %` }))));
-  $("fit-structure-box").hidden = !structure.length;
-}
-
-function plotCard(id, title, caption) {
-  return element("figure", { className: "plot-card fit-card" },
-    element("h3", { text: title }),
-    element("div", { className: "fit-plot", id, role: "group", "aria-label": title }),
-    element("figcaption", { text: caption }));
 }
 
 // ---------------------------------------------------------------------------------
@@ -537,9 +366,10 @@ async function downloadResiduals() {
   const job = panel.result;
   if (!job) return;
   try {
-    const response = await fetch(`${jobUrl(job.id)}/residuals.csv`);
-    if (!response.ok) throw new Error(`HTTP ${response.status}: the server no longer holds this fit; fit again`);
-    download(`${stem(job)}-residuals.csv`, new Blob([await response.text()], { type: "text/csv" }));
+    const text = await residualsCsv(job.id).catch((error) => {
+      throw new Error(`HTTP ${error.status}: the server no longer holds this fit; fit again`);
+    });
+    download(`${stem(job)}-residuals.csv`, new Blob([text], { type: "text/csv" }));
   } catch (error) {
     showError(`The residuals could not be downloaded: ${error.message}`);
   }
@@ -641,7 +471,7 @@ export function initDataPanel({ applyParams }) {
   wireDropZone();
   // leaving the page mid-fit frees the server's worker
   window.addEventListener("pagehide", () => {
-    if (isActive(panel.job)) deleteJob(panel.job.id, true);
+    if (isActive(panel.job)) cancelJob(panel.job.id, true);
   });
   setPanelState("idle");
   return loadSamples();
