@@ -1,28 +1,9 @@
-"""Dynamic simulation of the ramp experiment (E7) and of the LuGre comparison model.
+"""The one integrator of the dynamic models: an adaptive Dormand–Prince 5(4) scheme
+compiled with numba, with event location on each step's Hermite interpolant, exact
+restarts at reversals, and a sweep over rates (see :mod:`breakaway.dynamics`).
 
-Both models are written with one signature (python-control's ``nlsys`` idea) and
-integrated in one place, :func:`_integrate`:
-
-- ``rhs(t, y, p, mem, dy)`` writes the state derivative ``dy``;
-- ``force(t, y, p, mem)`` returns the friction force F [N];
-- ``guard(t, y, p, mem)``: a sign change from ``>= 0`` to ``< 0`` calls
-  ``jump(t, y, p, mem)``, which updates the discrete memory ``mem`` in place
-  (a motion reversal starting a new presliding branch);
-- ``stop(t, y, p, mem)``: a change from ``< 0`` to ``>= 0`` ends the run
-  (break-away).
-
-``p`` holds the parameters (the rate ``k`` included) and ``mem`` the discrete state.
-The integrator is an adaptive Dormand–Prince 5(4) scheme compiled with numba. Each
-accepted step's cubic Hermite interpolant is scanned for events, which are then located
-by bisection, so a short excursion inside one step is not missed, and the step restarts
-exactly at a reversal (a change of sign of ẋ starts a new branch at the current x and
-F, MODEL.md §5). The models are selected by id inside compiled code (a small model
-table) because numba cannot cache functions that receive jitted functions as arguments.
-
-With velocity weakening the quasi-static branch of (E12) is unstable: the body chatters
-through many reversals before it breaks away, and at small rates the break-away
-becomes sensitive to round-off (a chaotic transient). There the result is defined only
-to the scatter between tolerances, which the tests and the benchmark measure.
+The models are selected by id inside compiled code (a small model table) because numba
+cannot cache functions that receive jitted functions as arguments.
 """
 
 from __future__ import annotations
@@ -33,125 +14,10 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
-from .params import DEFAULTS, LUGRE_1995, _finite, check_fraction, check_positive, check_stribeck
-from .presliding import shape_scalar
-
-# ---------------------------------------------------------------------------------
-# shared model pieces
-# ---------------------------------------------------------------------------------
-
-
-@njit(cache=True)
-def _g(v, Fc, Fs, V, delta):
-    """g(v) of (E2) for a scalar v, with the limits of MODEL.md §2 at v = 0."""
-    av = abs(v)
-    if av == 0.0:
-        return Fs if delta > 0 else Fc
-    return Fc + (Fs - Fc) * math.exp(-((av / V) ** delta))
-
-
-@njit(cache=True)
-def _dg_dabs(v, Fc, Fs, V, delta):
-    """dg/d|v| for a scalar v (0 at v = 0 for δ >= 1)."""
-    av = abs(v)
-    if av == 0.0:
-        return 0.0
-    r = (av / V) ** delta
-    return -(Fs - Fc) * delta * r / av * math.exp(-r)
-
-
-# ---------------------------------------------------------------------------------
-# the note's presliding model (E6') under the ramp u = k t (E7)
-#   y = [x, v]; mem = [x_r, F_r, d]; p = [Fc, Fs, V, delta, sigma, s, m, k, z_ba]
-# ---------------------------------------------------------------------------------
-_P_FC, _P_FS, _P_V, _P_DELTA, _P_SIGMA, _P_S, _P_M, _P_K, _P_ZBA = range(9)
-
-
-@njit(cache=True)
-def _presliding_force(t, y, p, mem):
-    z = p[_P_S] * abs(y[0] - mem[0])
-    shape = shape_scalar(z)
-    target = mem[2] * _g(y[1], p[_P_FC], p[_P_FS], p[_P_V], p[_P_DELTA]) + p[_P_SIGMA] * y[1]
-    return mem[1] + (target - mem[1]) * shape
-
-
-@njit(cache=True)
-def _presliding_rhs(t, y, p, mem, dy):
-    dy[0] = y[1]
-    dy[1] = (p[_P_K] * t - _presliding_force(t, y, p, mem)) / p[_P_M]
-
-
-@njit(cache=True)
-def _presliding_guard(t, y, p, mem):
-    return y[1] * mem[2]
-
-
-@njit(cache=True)
-def _presliding_jump(t, y, p, mem):
-    # a change of sign of ẋ: new branch at the current x and F
-    F = _presliding_force(t, y, p, mem)
-    mem[0] = y[0]
-    mem[1] = F
-    mem[2] = -mem[2]
-
-
-@njit(cache=True)
-def _presliding_stop(t, y, p, mem):
-    if mem[2] > 0:
-        return p[_P_S] * abs(y[0] - mem[0]) - p[_P_ZBA]
-    return -1.0
-
-
-# ---------------------------------------------------------------------------------
-# LuGre (Canudas de Wit et al. 1995) under the same ramp
-#   y = [x, v, z]; mem unused; p = [sigma0, sigma1, sigma2, Fc, Fs, vs, delta, m, k]
-# ---------------------------------------------------------------------------------
-_L_S0, _L_S1, _L_S2, _L_FC, _L_FS, _L_VS, _L_DELTA, _L_M, _L_K = range(9)
-
-
-@njit(cache=True)
-def _lugre_zdot(y, p):
-    g = _g(y[1], p[_L_FC], p[_L_FS], p[_L_VS], p[_L_DELTA])
-    return y[1] - p[_L_S0] * abs(y[1]) * y[2] / g
-
-
-@njit(cache=True)
-def _lugre_force(t, y, p, mem):
-    return p[_L_S0] * y[2] + p[_L_S1] * _lugre_zdot(y, p) + p[_L_S2] * y[1]
-
-
-@njit(cache=True)
-def _lugre_rhs(t, y, p, mem, dy):
-    dy[0] = y[1]
-    dy[1] = (p[_L_K] * t - _lugre_force(t, y, p, mem)) / p[_L_M]
-    dy[2] = _lugre_zdot(y, p)
-
-
-@njit(cache=True)
-def _lugre_guard(t, y, p, mem):
-    return 1.0
-
-
-@njit(cache=True)
-def _lugre_jump(t, y, p, mem):
-    pass
-
-
-@njit(cache=True)
-def _lugre_stop(t, y, p, mem):
-    """−dF/dt: its first crossing to >= 0 is the first local maximum of F."""
-    v, zb = y[1], y[2]
-    a = (p[_L_K] * t - _lugre_force(t, y, p, mem)) / p[_L_M]
-    g = _g(v, p[_L_FC], p[_L_FS], p[_L_VS], p[_L_DELTA])
-    av = abs(v)
-    zdot = v - p[_L_S0] * av * zb / g
-    # d/dt (|v|/g(v)) = sgn(v)·a·(g − |v|·dg/d|v|)/g²
-    ratio_dot = math.copysign(1.0, v) * a * (g - av * _dg_dabs(v, p[_L_FC], p[_L_FS], p[_L_VS], p[_L_DELTA])) / (g * g)
-    if av == 0.0:
-        ratio_dot = abs(a) / g
-    zddot = a - p[_L_S0] * (ratio_dot * zb + av / g * zdot)
-    return -(p[_L_S0] * zdot + p[_L_S1] * zddot + p[_L_S2] * a)
-
+from ..params import check_positive
+from .lugre import _L_K, _lugre_force, _lugre_guard, _lugre_jump, _lugre_rhs, _lugre_stop
+from .ramp_model import (_P_K, _presliding_force, _presliding_guard, _presliding_jump,
+                         _presliding_rhs, _presliding_stop)
 
 # ---------------------------------------------------------------------------------
 # the model table: one signature, dispatched on the model id inside compiled code
@@ -411,10 +277,6 @@ def _sweep(model, y0, mem0, p, k_index, ks, t_ends, rtol, atols, h_max_frac, max
     return t_ba, F_ba, status, jumps
 
 
-# ---------------------------------------------------------------------------------
-# public API
-# ---------------------------------------------------------------------------------
-
 
 @dataclass(frozen=True)
 class RampBreakaway:
@@ -457,13 +319,6 @@ class Trajectory:
     bristle: np.ndarray | None = None
 
 
-def _rates(k):
-    k = np.atleast_1d(np.asanyarray(k, dtype=float)).ravel()
-    if k.size == 0 or np.any(~np.isfinite(k)) or np.any(k <= 0):
-        raise ValueError("k must be a non-empty list of finite rates > 0")
-    return k
-
-
 #: Default relative tolerance of the adaptive integrator. On the default preset the
 #: 15-rate Fig. 3 sweep then agrees with rtol = 1e-12 to 0.3 % (see benchmarks/).
 DEFAULT_RTOL = 1e-6
@@ -491,46 +346,6 @@ def _check_rtol(rtol):
         raise ValueError(f"rtol must be in [{MIN_RTOL}, 1e-3], got {rtol}")
 
 
-def _presliding_problem(ks, Fc, Fs, V, delta, s, sigma, m, z_ba, rtol):
-    """Parameters, initial state, memory, time limits and tolerances per rate."""
-    check_stribeck(Fc, Fs, V, delta, sigma)
-    check_positive(s=s, m=m)
-    _check_rtol(rtol)
-    check_fraction("z_ba", z_ba)
-    p = np.array([Fc, Fs, V, delta, sigma, s, m, 0.0, z_ba], dtype=float)
-    y0 = np.zeros(2)
-    mem0 = np.array([0.0, 0.0, 1.0])  # virgin state: x_r = 0, F_r = 0, d = +1
-    # quasi-static time to reach the steady level, or the time the ramp alone needs
-    # to push the mass across the presliding distance, whichever is longer
-    t_end = 20.0 * (max(Fs, Fc) / ks + (6.0 * m / (s * ks)) ** (1.0 / 3.0))
-    # absolute tolerances: x against 1/s, v against the E12 velocity k/(s·Fc)
-    atols = 1e-3 * rtol * np.column_stack([np.full(ks.size, 1.0 / s), ks / (s * Fc)])
-    return p, y0, mem0, t_end, atols
-
-
-def _lugre_problem(ks, params, rtol):
-    _check_rtol(rtol)
-    unknown = sorted(set(params or {}) - set(LUGRE_1995))
-    if unknown:
-        raise ValueError(f"unknown LuGre parameter(s) {unknown}; known: {sorted(LUGRE_1995)}")
-    q = {**LUGRE_1995, **(params or {})}
-    # the LuGre names first (vs, sigma2), then (E2)'s remaining constraints
-    check_positive(vs=q["vs"], sigma0=q["sigma0"], m=q["m"])
-    for name in ("sigma1", "sigma2"):
-        if _finite(name, q[name]) < 0:
-            raise ValueError(f"{name} must be >= 0, got {q[name]}")
-    check_stribeck(q["Fc"], q["Fs"], q["vs"], q["delta"], q["sigma2"])
-    p = np.array([q["sigma0"], q["sigma1"], q["sigma2"], q["Fc"], q["Fs"], q["vs"],
-                  q["delta"], q["m"], 0.0])
-    bristle = q["Fs"] / q["sigma0"]  # bristle deflection at stiction [m]
-    s = 1.0 / bristle
-    t_end = 20.0 * (q["Fs"] / ks + (6.0 * q["m"] / (s * ks)) ** (1.0 / 3.0))
-    v_scale = np.maximum(ks / (s * q["Fc"]), q["vs"])
-    atols = 1e-3 * rtol * np.column_stack([np.full(ks.size, bristle), v_scale,
-                                           np.full(ks.size, bristle)])
-    return p, np.zeros(3), np.zeros(1), t_end, atols
-
-
 def _run_sweep(model, ks, p, y0, mem0, t_end, atols, rtol, max_steps):
     t_ba, F_ba, status, jumps = _sweep(model.id, y0, mem0, p, model.k_index, ks, t_end, rtol,
                                        atols, _H_MAX_FRACTION, max_steps)
@@ -550,90 +365,3 @@ def _run_one(model, k, p, y0, mem0, t_end, atol, rtol, max_steps, capacity):
                       rec_y[:n, 2].copy() if y.size > 2 else None)
 
 
-def simulate_breakaway(k, Fc, Fs, V, delta, s=1.0, sigma=0.0, m=DEFAULTS["m"], z_ba=0.95,
-                       rtol=DEFAULT_RTOL, max_steps=2_000_000):
-    """Break-away of the ramp experiment ``m·ẍ + F = k·t`` (E7) for each rate.
-
-    Starts at rest in the virgin presliding state; F follows (E6') with exact reversal
-    handling. Break-away is the first time ``s·|x − x_r| >= z*`` with ``d = +1``
-    (MODEL.md §5).
-
-    Parameters
-    ----------
-    k : array_like
-        Actuation force rates [N/s], each > 0.
-    Fc, Fs, V, delta, sigma :
-        Steady-state parameters (E2), units as in :mod:`breakaway.steady`.
-    s : float, optional
-        Presliding scale [1/m].
-    m : float, optional
-        Moving mass [kg].
-    z_ba : float, optional
-        Presliding fraction taken as break-away [-].
-    rtol : float, optional
-        Relative tolerance of the adaptive integrator.
-    max_steps : int, optional
-        Step budget per rate; a rate that exhausts it reports NaN.
-
-    Returns
-    -------
-    RampBreakaway
-        ``u_ba = k·t_ba`` [N], ``F_ba`` [N], ``t_ba`` [s] per rate.
-    """
-    ks = _rates(k)
-    p, y0, mem0, t_end, atols = _presliding_problem(ks, Fc, Fs, V, delta, s, sigma, m, z_ba,
-                                                    rtol)
-    return _run_sweep(PRESLIDING, ks, p, y0, mem0, t_end, atols, rtol, max_steps)
-
-
-def simulate_trajectory(k, Fc, Fs, V, delta, s=1.0, sigma=0.0, m=DEFAULTS["m"], z_ba=0.95,
-                        rtol=DEFAULT_RTOL, max_steps=2_000_000, capacity=200_000):
-    """One ramp run of (E7) up to break-away, recorded at every step and reversal.
-
-    Parameters are those of :func:`simulate_breakaway` with a single rate ``k`` [N/s];
-    ``capacity`` bounds the number of recorded samples.
-
-    Returns
-    -------
-    Trajectory
-    """
-    ks = _rates(k)
-    if ks.size != 1:
-        raise ValueError("k must be a single rate")
-    p, y0, mem0, t_end, atols = _presliding_problem(ks, Fc, Fs, V, delta, s, sigma, m, z_ba,
-                                                    rtol)
-    return _run_one(PRESLIDING, ks[0], p, y0, mem0, t_end[0], atols[0], rtol, max_steps,
-                    capacity)
-
-
-def simulate_lugre_breakaway(k, params=None, rtol=DEFAULT_RTOL, max_steps=2_000_000):
-    """Break-away of the LuGre model under the ramp ``u = k·t``: the first local max of F.
-
-    Parameters
-    ----------
-    k : array_like
-        Actuation force rates [N/s].
-    params : dict, optional
-        Overrides of :data:`breakaway.params.LUGRE_1995` (``sigma0`` [N/m], ``sigma1``
-        [N s/m], ``sigma2`` [N s/m], ``Fc``, ``Fs`` [N], ``vs`` [m/s], ``delta``, ``m`` [kg]).
-    rtol : float, optional
-        Relative tolerance.
-
-    Returns
-    -------
-    RampBreakaway
-        ``F_ba`` is the first local maximum of F, ``u_ba = k·t`` at that instant.
-    """
-    ks = _rates(k)
-    p, y0, mem0, t_end, atols = _lugre_problem(ks, params, rtol)
-    return _run_sweep(LUGRE, ks, p, y0, mem0, t_end, atols, rtol, max_steps)
-
-
-def simulate_lugre_trajectory(k, params=None, rtol=DEFAULT_RTOL, max_steps=2_000_000,
-                              capacity=200_000):
-    """One LuGre ramp run up to the first local maximum of F (see :func:`simulate_lugre_breakaway`)."""
-    ks = _rates(k)
-    if ks.size != 1:
-        raise ValueError("k must be a single rate")
-    p, y0, mem0, t_end, atols = _lugre_problem(ks, params, rtol)
-    return _run_one(LUGRE, ks[0], p, y0, mem0, t_end[0], atols[0], rtol, max_steps, capacity)

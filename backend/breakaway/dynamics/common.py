@@ -1,0 +1,29 @@
+"""Pieces the dynamic models share: the Stribeck magnitude g of (E2) and its slope in
+compiled form (the integrator's models call them per step)."""
+
+from __future__ import annotations
+
+import math
+
+from numba import njit
+
+
+@njit(cache=True)
+def _g(v, Fc, Fs, V, delta):
+    """g(v) of (E2) for a scalar v, with the limits of MODEL.md §2 at v = 0."""
+    av = abs(v)
+    if av == 0.0:
+        return Fs if delta > 0 else Fc
+    return Fc + (Fs - Fc) * math.exp(-((av / V) ** delta))
+
+
+@njit(cache=True)
+def _dg_dabs(v, Fc, Fs, V, delta):
+    """dg/d|v| for a scalar v (0 at v = 0 for δ >= 1)."""
+    av = abs(v)
+    if av == 0.0:
+        return 0.0
+    r = (av / V) ** delta
+    return -(Fs - Fc) * delta * r / av * math.exp(-r)
+
+
