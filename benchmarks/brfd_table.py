@@ -15,10 +15,22 @@ from breakaway.identify import diagnose, read_csv, report
 DEFAULT_DIR = Path(__file__).resolve().parents[1].parent / "shared" / "data" / "brfd"
 
 
+def warnings(r: dict) -> str:
+    """The warning codes, each with its parameter."""
+    return ", ".join(f"{w['code']}" + (f" ({w['parameter']})" if w["parameter"] else "")
+                     for w in r["warnings"]) or "none"
+
+
+def structure(r: dict) -> str:
+    """The two variables the final residual depends on most."""
+    return ", ".join(f"{s['against']} {100 * s['strength']:.0f} %"
+                     for s in r["residual_structure"][:2]) or "white"
+
+
 def main(folder: Path) -> None:
     print("| run | rows | effects found | RMSE before → after [N] | held-out before → after [N] "
-          "| noise floor [N] | white | unexplained | time [s] |")
-    print("|---|---|---|---|---|---|---|---|---|")
+          "| noise floor [N] | unexplained | warnings | residual depends most on | time [s] |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
     for path in sorted(folder.glob("*.csv")):
         data = read_csv(path)
         t0 = time.perf_counter()
@@ -27,8 +39,8 @@ def main(folder: Path) -> None:
         print(f"| `{path.name}` | {r['n']} | {', '.join(r['effects']) or 'none'} | "
               f"{r['error_before']:.0f} → {r['error_after']:.0f} | "
               f"{r['heldout']['before']:.0f} → {r['heldout']['after']:.0f} | "
-              f"{r['noise_floor']:.1f} | {'yes' if r['residual_white'] else 'no'} | "
-              f"{'yes' if r['unexplained'] else 'no'} | {seconds:.1f} |", flush=True)
+              f"{r['noise_floor']:.1f} | {'yes' if r['unexplained'] else 'no'} | "
+              f"{warnings(r)} | {structure(r)} | {seconds:.1f} |", flush=True)
 
 
 if __name__ == "__main__":
