@@ -12,7 +12,7 @@ from fastapi.staticfiles import StaticFiles
 from .. import __version__
 from ..settings import get_settings
 from .errors import request_validation_handler
-from .middleware import BodySizeLimit, CatchAll, SecurityHeaders
+from .middleware import BodySizeLimit, CatchAll, CompressPages, SecurityHeaders
 from .fitjobs import FitJobs
 from .routers import assets, explore, fit, health, presets, ramp, samples, simulate
 from .simulation import SimulationRunner
@@ -58,6 +58,7 @@ def create_app() -> FastAPI:
     app.add_middleware(BodySizeLimit, json_limit=settings.max_json_bytes,
                        upload_limit=settings.max_upload_bytes + 1024 * 1024)
     app.add_middleware(SecurityHeaders)
+    app.add_middleware(CompressPages)
     if settings.frontend_dir.is_dir():
         app.mount("/", StaticFiles(directory=settings.frontend_dir, html=True), name="frontend")
     return app

@@ -45,6 +45,11 @@ class FitJobs:
         self._jobs: OrderedDict[str, FitJob] = OrderedDict()
         self._lock = threading.Lock()
 
+    def full(self) -> bool:
+        """Whether every worker is taken (a new job would be refused)."""
+        with self._lock:
+            return sum(j.status in ("queued", "running") for j in self._jobs.values()) >= self._workers
+
     def submit(self, data: Dataset, source: str) -> FitJob:
         with self._lock:
             active = sum(j.status in ("queued", "running") for j in self._jobs.values())

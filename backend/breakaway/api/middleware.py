@@ -143,10 +143,30 @@ class CatchAll:
             log.exception("unhandled error on %s %s", scope.get("method"), scope.get("path"))
             if started:
                 return
+            # the client learns what failed, never the exception's text (logged above)
             body = error_body([{"type": "unprocessable", "loc": ["body"],
-                                "msg": f"the request could not be processed "
-                                       f"({type(exc).__name__}: {exc})"[:300]}])
+                                "msg": "the model cannot evaluate these inputs; "
+                                       "try values closer to the defaults"}])
             await send({"type": "http.response.start", "status": 422,
                         "headers": [(b"content-type", b"application/json"),
                                     (b"content-length", str(len(body)).encode())]})
             await send({"type": "http.response.body", "body": body})
+
+
+class CompressPages:
+    """gzip for the page's own files (HTML, CSS, ES modules) above 1 KB; API answers and
+    the pre-compressed Plotly bundle pass untouched (an explorer frame is compact JSON
+    whose compression would cost more than it saves on a local network)."""
+
+    def __init__(self, app: ASGIApp) -> None:
+        from starlette.middleware.gzip import GZipMiddleware
+
+        self.app = app
+        self.gzip = GZipMiddleware(app, minimum_size=1024, compresslevel=6)
+
+    async def __call__(self, scope: Scope, receive: Receive, send: Send) -> None:
+        path = scope.get("path", "") if scope["type"] == "http" else ""
+        if scope["type"] != "http" or path.startswith(("/api/", "/vendor/plotly", "/openapi")):
+            await self.app(scope, receive, send)
+        else:
+            await self.gzip(scope, receive, send)

@@ -56,10 +56,18 @@ async def fit(file: UploadFile = File(..., description="CSV file, MODEL.md §6")
         return unprocessable([{"type": "fit_error", "loc": ["body", "file"], "msg": str(err)}])
 
 
+#: Seconds a client is asked to wait when every fit worker is busy (a short fit's time).
+RETRY_AFTER_S = 2
+
+
 @router.post("/fit/jobs", response_model=FitJobStatus, status_code=202)
 async def start_fit(request: Request, file: UploadFile = File(...),
                     kind: str | None = Form(None, description=_KIND_HELP)) -> FitJobStatus | Response:
     """Start a fit in the background; poll ``GET /api/fit/jobs/{id}`` for progress."""
+    if request.app.state.fit_jobs.full():
+        # decided before the upload is parsed: a busy server does no work for it
+        raise HTTPException(status_code=429, detail="every fit worker is busy; try again shortly",
+                            headers={"Retry-After": str(RETRY_AFTER_S)})
     try:
         dataset = await _parse(file, kind)
     except DataError as err:
@@ -67,7 +75,8 @@ async def start_fit(request: Request, file: UploadFile = File(...),
     try:
         job = request.app.state.fit_jobs.submit(dataset, file.filename or "upload.csv")
     except Busy as err:
-        raise HTTPException(status_code=429, detail=str(err)) from None
+        raise HTTPException(status_code=429, detail=str(err),
+                            headers={"Retry-After": str(RETRY_AFTER_S)}) from None
     return _status(job)
 
 

@@ -1,0 +1,69 @@
+"""Delivery and failure paths: compressed static files with ETags, 429 with Retry-After
+decided before the upload is read, and internal errors without exception text."""
+
+from __future__ import annotations
+
+import gzip
+
+import pytest
+from fastapi.testclient import TestClient
+
+from breakaway.api.app import create_app
+from breakaway.api.routers.assets import PLOTLY_JS
+
+
+@pytest.fixture(scope="module")
+def client():
+    with TestClient(create_app()) as c:
+        yield c
+
+
+def test_plotly_is_compressed_cached_and_revalidated(client):
+    response = client.get("/vendor/plotly.min.js", headers={"Accept-Encoding": "gzip"})
+    assert response.status_code == 200
+    assert response.headers["content-encoding"] == "gzip"
+    assert int(response.headers["content-length"]) < 0.4 * PLOTLY_JS.stat().st_size
+    assert response.content == PLOTLY_JS.read_bytes()  # httpx decodes the gzip body
+    assert "max-age=604800" in response.headers["cache-control"]
+    etag = response.headers["etag"]
+    again = client.get("/vendor/plotly.min.js", headers={"If-None-Match": etag})
+    assert again.status_code == 304 and again.content == b""
+    plain = client.get("/vendor/plotly.min.js", headers={"Accept-Encoding": "identity"})
+    assert "content-encoding" not in plain.headers
+    assert plain.content == PLOTLY_JS.read_bytes()
+
+
+@pytest.mark.parametrize("path", ["/", "/js/main.js", "/css/explorer.css"])
+def test_the_page_files_are_gzipped(client, path):
+    response = client.get(path, headers={"Accept-Encoding": "gzip"})
+    assert response.status_code == 200
+    assert response.headers.get("content-encoding") == "gzip"
+
+
+def test_api_answers_are_not_compressed(client):
+    response = client.post("/api/explore", json={}, headers={"Accept-Encoding": "gzip"})
+    assert response.status_code == 200
+    assert "content-encoding" not in response.headers
+
+
+def test_busy_fit_workers_answer_429_with_retry_after_before_reading(client, monkeypatch):
+    jobs = client.app.state.fit_jobs
+    monkeypatch.setattr(jobs, "full", lambda: True)
+    response = client.post("/api/fit/jobs", files={"file": ("x.csv", b"not even a csv")})
+    assert response.status_code == 429
+    assert response.headers["retry-after"] == "2"
+    assert "busy" in response.json()["detail"]
+
+
+def test_an_internal_error_is_a_422_without_exception_text(client, monkeypatch):
+    from breakaway.api.routers import explore
+
+    def broken(*args, **kwargs):
+        raise ZeroDivisionError("float division by zero in frame")
+
+    monkeypatch.setattr(explore, "explore_frame", broken)
+    response = client.post("/api/explore", json={})
+    assert response.status_code == 422
+    text = response.text
+    assert "ZeroDivisionError" not in text and "division" not in text
+    assert "cannot evaluate" in text
