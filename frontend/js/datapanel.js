@@ -22,7 +22,10 @@ import {
 const PLOT_CONFIG = {
   responsive: true,
   displaylogo: false,
-  modeBarButtonsToRemove: ["select2d", "lasso2d"],
+  showSendToCloud: false,
+  showEditInChartStudio: false,
+  showLink: false,
+  modeBarButtonsToRemove: ["select2d", "lasso2d", "sendDataToCloud"],
 };
 /** Explorer parameters that "Use these parameters" sets (rounded to this many digits). */
 const DIGITS = 6;

@@ -32,8 +32,17 @@ const PLAY_SECONDS = 4;
 const PLOT_CONFIG = {
   responsive: true,
   displaylogo: false,
-  modeBarButtonsToRemove: ["select2d", "lasso2d", "toImage"],
+  showSendToCloud: false,
+  showEditInChartStudio: false,
+  showLink: false,
+  modeBarButtonsToRemove: ["select2d", "lasso2d", "toImage", "sendDataToCloud"],
 };
+
+/** Plotly's modebar buttons are links in the tab order; the page's own buttons (export,
+ *  play) do what they do, so the modebar leaves the keyboard path. */
+function untab(element) {
+  for (const button of element.querySelectorAll(".modebar-btn")) button.tabIndex = -1;
+}
 
 const app = {
   defaults: null,
@@ -73,6 +82,7 @@ const $ = (id) => document.getElementById(id);
 
 function setBusy(busy) {
   app.busy = busy;
+  if (!busy && app.frames > 0) $("loading").hidden = true;
   const plots = $("plots");
   plots.dataset.ready = busy ? "false" : "true";
   plots.dataset.frame = String(app.frames);
@@ -181,7 +191,9 @@ function react(id, figure) {
   }
   drawn[id] = { data: figure.data, layoutKey };
   app.reacts += 1;
-  return window.Plotly.react($(`plot-${id}`), figure.data, figure.layout, PLOT_CONFIG);
+  const element = $(`plot-${id}`);
+  return window.Plotly.react(element, figure.data, figure.layout, PLOT_CONFIG)
+    .then(() => untab(element));
 }
 
 function draw() {
@@ -471,9 +483,23 @@ async function ensureLugre() {
 // state changes from the controls, presets, reset and history
 // ---------------------------------------------------------------------------------
 
+/** A history entry for the state, only when it is valid: a shared link never opens
+ *  broken. */
 function commit() {
+  if (Object.keys(validate(app.state)).length) return;
   const query = toQuery(app.state);
   if (query !== window.location.search) window.history.pushState(null, "", query);
+}
+
+/** Keep Fs ≥ Fc as the person edits one of them: the other follows (MODEL.md §1). */
+function couple(name) {
+  const Fc = parseNumber(app.state.Fc);
+  const Fs = parseNumber(app.state.Fs);
+  if (!(Fc > 0 && Fs > 0) || Fs >= Fc) return false;
+  if (name === "Fc") app.state.Fs = Fc;
+  else if (name === "Fs") app.state.Fc = Fs;
+  else return false;
+  return true;
 }
 
 function setState(state, { push = true } = {}) {
@@ -500,11 +526,13 @@ function wireControls() {
       const value = sliderToValue(spec, range.value);
       app.state[spec.name] = value;
       box.value = String(value);
+      if (couple(spec.name)) writeControls(app.state, { except: range });
       refresh();
     });
     box.addEventListener("input", () => {
       const value = parseNumber(box.value);
       app.state[spec.name] = Number.isNaN(value) ? box.value : value;
+      couple(spec.name);
       writeControls(app.state, { except: box });
       refresh();
     });

@@ -22,7 +22,6 @@ def count_explore_requests(page) -> list:
 
 
 @pytest.mark.parametrize(("label", "text", "field", "message"), [
-    ("Fs [N]", "0.5", "Fs", "Fs must be ≥ Fc"),
     ("Fc [N]", "abc", "Fc", "Fc must be a number"),
     ("δ (delta)", "0", "delta", "|δ| ≥ 0.05"),
     ("z* (z_ba)", "1", "z_ba", "z* must be in (0, 1)"),
@@ -53,14 +52,48 @@ def test_invalid_value_shows_inline_error_and_is_not_sent(explorer, label, text,
     assert_plots_match_model(explorer)
 
 
-def test_fs_below_fc_by_slider_shows_the_error(explorer):
+def test_fs_and_fc_stay_coupled_and_the_url_stays_valid(explorer):
     explorer.open("?sim=0&Fc=1&Fs=1")
-    slider = explorer.page.get_by_label("Fs [N] slider", exact=True)
+    page = explorer.page
+    slider = page.get_by_label("Fs [N] slider", exact=True)
     slider.focus()
     slider.press("ArrowLeft")
     explorer.ready()
-    assert explorer.page.locator("#Fs-error").is_visible()
-    assert explorer.state()["Fs"] < 1
+    state = explorer.state()
+    # Fs moved below Fc: Fc follows, nothing freezes, no error
+    assert state["Fs"] < 1 and state["Fc"] == state["Fs"]
+    assert not page.locator("#Fs-error").is_visible()
+    assert page.locator("#plots").get_attribute("data-valid") == "true"
+    assert float(page.get_by_label("Fc [N]", exact=True).input_value()) == state["Fc"]
+    # typing Fc above Fs: Fs follows
+    box = page.get_by_label("Fc [N]", exact=True)
+    box.fill("3")
+    box.press("Enter")
+    explorer.ready()
+    state = explorer.state()
+    assert state["Fc"] == 3 and state["Fs"] == 3
+    query = parse_qs(urlparse(page.url).query)
+    assert query["Fs"] == ["3"] and query["Fc"] == ["3"]
+    # an invalid value never reaches the URL or the history
+    before, length = page.url, page.evaluate("history.length")
+    box.fill("abc")
+    box.press("Enter")
+    explorer.ready()
+    assert page.locator("#Fc-error").is_visible()
+    assert page.url == before and page.evaluate("history.length") == length
+
+
+def test_plotly_toolbar_offers_no_cloud_and_stays_out_of_the_tab_order(explorer):
+    explorer.open("?sim=0")
+    page = explorer.page
+    titles = page.evaluate("[...document.querySelectorAll('#plots .modebar-btn')]"
+                           ".map(b => b.getAttribute('data-title') || '')")
+    assert titles and not [t for t in titles if "cloud" in t.lower() or "chart studio" in t.lower()]
+    assert page.locator("#plots .modebar-btn").count() > 0
+    assert page.evaluate("[...document.querySelectorAll('#plots .modebar-btn')]"
+                         ".every(b => b.tabIndex === -1)")
+    assert page.locator(".plotlyjsicon").count() == 0  # no Plotly logo
+    assert not page.locator("#loading").is_visible()
 
 
 def test_url_round_trip_restores_the_view(explorer, browser, server_url):
