@@ -52,6 +52,8 @@ SCREEN_ROWS = 20_000
 FULL_REFIT_EVALUATIONS = 8
 #: ... in this many contiguous blocks.
 SCREEN_BLOCKS = 8
+#: Evaluations per parameter of a candidate's screening fit.
+SCREEN_EVALUATIONS = 15
 #: Candidates (by BIC) combined in pairs when no single effect passes.
 PAIR_CANDIDATES = 3
 
@@ -179,8 +181,12 @@ def heldout_rows(data: Dataset):
     return np.setdiff1d(idx, test), test
 
 
+#: Evaluations of the refit on the training rows (it starts at the fit on every row).
+HELDOUT_EVALUATIONS = 20
+
+
 def _heldout_error(data: Dataset, fit: FitResult, train, test) -> float:
-    trained = refit(data, fit, rows=train)
+    trained = refit(data, fit, rows=train, max_nfev=HELDOUT_EVALUATIONS)
     r = trained.problem.measured[test] - trained.prediction[test]
     return math.sqrt(float(np.mean(r**2)))
 
@@ -231,14 +237,19 @@ class _Loop:
         return is_white(fit.residual(), fit.problem, self.noise)
 
     def try_effect(self, current: FitResult, effect: str) -> FitResult | None:
+        """A candidate's fit on a short budget: enough to rank the candidates and to
+        reject the ones that do not help; the ones that pass are polished in full."""
         try:
-            return fit_with_effect(self.data, current, effect, restarts=self.restarts)
+            budget = SCREEN_EVALUATIONS * (len(current.problem.names) + len(EFFECTS[effect].keys) + 1)
+            return fit_with_effect(self.data, current, effect, restarts=self.restarts,
+                                   max_nfev=budget)
         except (ValueError, FloatingPointError) as exc:
             self.verdicts[effect] = Candidate(reason=f"the fit failed: {exc}")
             return None
 
     def run(self, base: FitResult, available: list[str]) -> tuple[FitResult, float]:
         current, current_heldout = base, self.heldout(base)
+        self.heldout_base = current_heldout
         remaining = list(available)
         total = max(len(remaining), 1)
         while remaining and not self.white(current):
@@ -280,6 +291,8 @@ class _Loop:
         passing = []
         for effect, trial in trials.items():
             reason = _gate(current, trial, self.noise)
+            if reason is None:
+                trials[effect] = trial = refit(self.data, trial)  # the full polish
             self.verdicts[effect] = Candidate(trial.rmse, trial.bic, None, False, reason)
             if reason is None:
                 passing.append(effect)
@@ -445,10 +458,12 @@ def _diagnose(data: Dataset, progress) -> Diagnosis:
         else:
             loop.verdicts[effect] = Candidate(reason=why)
     current, current_heldout = loop.run(screen_base, available)
-    heldout_before = loop.heldout(screen_base)
+    heldout_before = loop.heldout_base
     if len(current.effects) > 1:
         current, current_heldout = loop.backward(current, current_heldout)
-    if current.effects:
+    if current.effects and not loop.white(current):
+        # a swap only pays where structure is left: with a white residual no rival can
+        # lower the BIC by MIN_BIC_DROP
         current, current_heldout = loop.swap(current, current_heldout, available)
     steps = [s for s in loop.steps if s.effect in current.effects]
     if screened:

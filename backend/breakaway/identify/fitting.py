@@ -229,7 +229,7 @@ def best_base_starts(data: Dataset, count: int = 4) -> list[dict]:
 
 
 def fit_with_effect(data: Dataset, current: FitResult, effect: str, rows=None,
-                    screen=2, restarts=()) -> FitResult:
+                    screen=2, restarts=(), max_nfev=None) -> FitResult:
     """Add ``effect`` to ``current``'s model and fit everything again.
 
     Starts: ``current``'s parameters with the effect's values read off the residual,
@@ -244,7 +244,12 @@ def fit_with_effect(data: Dataset, current: FitResult, effect: str, rows=None,
     profiled = [p.name for p in EFFECTS[effect].params if p.profiled]
     if profiled:
         return _profiled_fit(data, problem.effects, profiled[0], starts, rows)
-    return fit_model(data, problem.effects, starts=starts, rows=rows, screen=screen)
+    return fit_model(data, problem.effects, starts=starts, rows=rows, screen=screen,
+                     max_nfev=max_nfev)
+
+
+#: Values of a profiled parameter that get a fit (the best by their starts' cost).
+PROFILE_FITS = 3
 
 
 def _profiled_fit(data, effects, name, starts, rows):
@@ -254,9 +259,14 @@ def _profiled_fit(data, effects, name, starts, rows):
         by_value.setdefault(start[name], []).append(start)
     zero = {**starts[0], name: 0.0}
     by_value.setdefault(0.0, [zero])
+    # every value is scored at its starts first; only the most promising are fitted
+    index = np.arange(data.n) if rows is None else np.asarray(rows)
+    scored = sorted(by_value.items(), key=lambda item: min(
+        _cost(problem_for(data, effects, {name: item[0]}), {**s, name: item[0]}, index)
+        for s in item[1]))
     best = None
     n_free = len(problem_for(data, effects).names) - 1
-    for value, group in by_value.items():
+    for value, group in scored[:PROFILE_FITS]:
         fit = fit_model(data, effects, starts=group, rows=rows, screen=1, fixed={name: value},
                         max_nfev=8 * (n_free + 1))
         if best is None or fit.bic < best.bic:
