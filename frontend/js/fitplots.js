@@ -183,17 +183,37 @@ export function effectFigure(series, kind, effect, revision) {
   return figure;
 }
 
+/** An axis title "name [unit]" in the data's units (rotary data: N·m, rad, rad/s). */
+export function inUnits(title, units, forceUnit) {
+  const match = /^(.*) \[(.*)\]$/.exec(title ?? "");
+  if (!match || !units) return title;
+  const [, name, unit] = match;
+  const key = name === "residual" || name === "F_ba" || name === "F" ? null : name;
+  const wanted = key ? units[key] : (unit === "N" ? forceUnit : null);
+  return wanted ? `${name} [${wanted}]` : title;
+}
+
+function relabel(figure, units, forceUnit) {
+  for (const axis of ["xaxis", "yaxis"]) {
+    const title = figure.layout[axis]?.title;
+    if (title && typeof title.text === "string") title.text = inUnits(title.text, units, forceUnit);
+  }
+  return figure;
+}
+
 /** Every figure of one finished fit: {model, residual, effects: [{effect, regressor, figure}]}. */
 export function fitFigures(job) {
   const { series, report } = job;
   const kind = report.kind;
+  const units = report.units;
+  const forceUnit = units?.[kind === "breakaway" ? "F_ba" : "F"] ?? "N";
   return {
-    model: modelFigure(series, kind, job.id),
-    residual: residualFigure(series, kind, job.id),
+    model: relabel(modelFigure(series, kind, job.id), units, forceUnit),
+    residual: relabel(residualFigure(series, kind, job.id), units, forceUnit),
     effects: report.effects.filter((effect) => effect in series.effect_regressor).map((effect) => ({
       effect,
       regressor: series.effect_regressor[effect],
-      figure: effectFigure(series, kind, effect, job.id),
+      figure: relabel(effectFigure(series, kind, effect, job.id), units, forceUnit),
     })),
   };
 }

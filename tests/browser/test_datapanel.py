@@ -402,3 +402,19 @@ def test_quiz_right_guess_and_the_plain_sample(explorer):
     assert wait_for(explorer, "done", "error") == "done"
     assert not page.locator("#quiz").is_visible()
     assert shown_effects(explorer) == ["offset"]
+
+
+def test_rotary_data_are_labelled_in_newton_metres(explorer):
+    rng = np.random.default_rng(2)
+    k = np.repeat(np.linspace(50.0, 250.0, 9), 4)
+    F = 2.4 + 0.009 * k + 0.03 * rng.standard_normal(k.size)
+    text = "k [N·m/s],F_ba [N·m]\n" + "".join(f"{a:.6g},{b:.6g}\n" for a, b in zip(k, F))
+    explorer.open("?sim=0")
+    upload(explorer, text, "joint.csv")
+    assert wait_for(explorer, "done", "error") == "done"
+    page = explorer.page
+    title = page.evaluate("document.getElementById('fit-plot-model').layout.yaxis.title.text")
+    assert title == "F_ba [N·m]"
+    xtitle = page.evaluate("document.getElementById('fit-plot-model').layout.xaxis.title.text")
+    assert xtitle == "k [N·m/s]"
+    assert "fit RMSE [N·m]" in page.locator("#fit-error-table").inner_text()
