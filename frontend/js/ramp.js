@@ -125,7 +125,7 @@ export function explainBreakaway(ramp, state) {
 
 /** The body of POST /api/ramp for the explorer's state. */
 export function rampBody(state) {
-  const body = { k: Number(state.k), F_hat: state.F_hat };
+  const body = { k: Number(state.k), F_hat: state.F_hat, max_steps: 300_000 };
   for (const name of ["Fc", "Fs", "V", "delta", "sigma", "s", "z_ba", "m"]) {
     body[name] = Number(state[name]);
   }

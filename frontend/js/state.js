@@ -71,8 +71,13 @@ export function exploreBody(state) {
 }
 
 /** The body of POST /api/simulate (presliding model) for a valid state and rates. */
+/** Integrator steps per rate the page asks for: the default preset's slowest Fig. 3
+ *  ramp needs about 100,000; parameters far from the note's scale (a fitted damper in
+ *  kN) would otherwise keep the simulator busy for tens of seconds. */
+export const INTERACTIVE_STEPS = 300_000;
+
 export function simulateBody(state, rates) {
-  const body = { model: "presliding", k: rates };
+  const body = { model: "presliding", k: rates, max_steps: INTERACTIVE_STEPS };
   for (const name of ["Fc", "Fs", "V", "delta", "sigma", "s", "z_ba", "m"]) {
     body[name] = parseNumber(state[name]);
   }

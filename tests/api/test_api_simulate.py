@@ -158,3 +158,15 @@ def test_one_run_at_a_time_and_waiting_counts_against_the_budget():
         runner.shutdown()
     expected = simulate_breakaway([0.01], **params, max_steps=1_000_000)
     assert result["u_ba"][0] == pytest.approx(expected.u_ba[0], rel=1e-12)
+
+
+def test_a_step_budget_bounds_the_wait(client):
+    # a damper fitted in kN under the note's N/s rates: no rate breaks away quickly
+    damper = {"Fc": 15430, "Fs": 16320, "V": 1.704e-4, "delta": 7.3, "s": 53.6}
+    body = client.post("/api/simulate", json={"k": [0.01, 1.0], **damper,
+                                              "max_steps": 20_000}).json()
+    assert body["u_ba"] == [None, None]
+    ok = client.post("/api/simulate", json={"k": [10.0], "max_steps": 20_000}).json()
+    assert ok["u_ba"][0] is not None
+    bad = client.post("/api/simulate", json={"k": [1.0], "max_steps": 10})
+    assert bad.status_code == 422 and bad.json()["detail"][0]["loc"] == ["body", "max_steps"]

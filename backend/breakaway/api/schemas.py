@@ -133,6 +133,15 @@ class SimulateRequest(_Levels):
     m: float | None = Field(None, gt=0, description="moving mass [kg]")
     sigma0: float | None = Field(None, gt=0, description="LuGre bristle stiffness [N/m] (lugre only)")
     sigma1: float | None = Field(None, ge=0, description="LuGre bristle damping [N·s/m] (lugre only)")
+    max_steps: int | None = Field(
+        None, ge=1000, description="integrator steps per rate, at most the server's "
+        "BREAKAWAY_SIMULATE_MAX_STEPS (the default); a rate that needs more reports null "
+        "(how an interactive page bounds its wait)")
+
+    def step_budget(self) -> int:
+        """The steps per rate this request may use."""
+        cap = get_settings().simulate_max_steps
+        return cap if self.max_steps is None else min(self.max_steps, cap)
 
     @model_validator(mode="after")
     def _fields_of_the_model(self) -> SimulateRequest:

@@ -28,7 +28,7 @@ async def ramp(body: RampRequest, request: Request) -> RampResponse:
         with model_errors(RampRequest.model_fields.keys()):
             result = await request.app.state.simulations.run(
                 settings.simulate_timeout_s, body.model, body.k, params,
-                settings.simulate_max_steps, target=run_ramp)
+                body.step_budget(), target=run_ramp)
     except SimulationTimeout as exc:
         raise RequestValidationError([{"type": "simulation_timeout", "loc": ("body", "k"),
                                        "msg": f"{exc}; ask for a larger rate"}]) from exc

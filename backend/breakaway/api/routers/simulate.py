@@ -28,7 +28,7 @@ async def simulate(body: SimulateRequest, request: Request) -> SimulateResponse:
         with model_errors(SimulateRequest.model_fields.keys()):
             result = await request.app.state.simulations.run(
                 settings.simulate_timeout_s, body.model, body.k, params,
-                settings.simulate_max_steps)
+                body.step_budget())
     except SimulationTimeout as exc:
         raise RequestValidationError([{"type": "simulation_timeout", "loc": ("body", "k"),
                                        "msg": f"{exc}; ask for fewer or larger rates"}]) from exc
