@@ -390,6 +390,38 @@ def _strip_units(header):
     return names, rotary
 
 
+# --------------------------------------------------------------------------- validation
+
+#: Per-column value rules of MODEL.md §1, §6, §7: (violation mask, what is required).
+_VALUE_RULES = {
+    "k": (lambda a: ~(a > 0), "k, the actuation force rate, must be > 0"),
+    "F_ba": (lambda a: ~(a >= 0), "F_ba is a magnitude and must be >= 0"),
+    "dwell": (lambda a: ~(a >= 0), "dwell, a time, must be >= 0"),
+    "direction": (lambda a: ~((a == 1) | (a == -1)), "direction must be +1 or -1"),
+}
+
+
+def _validate_values(columns, cell_text, line_no) -> None:
+    """The kinds' value constraints: each column's rule, and a strictly increasing t
+    (a time series). Raises DataError at the first offending cell."""
+    checks = [(c, _VALUE_RULES[c][0](columns[c])) for c in columns if c in _VALUE_RULES]
+    violation = _first_bad(checks)
+    if violation is not None:
+        r, name = violation
+        raise DataError(f"{_VALUE_RULES[name][1]}, got {cell_text(r, name)}",
+                        int(line_no[r]), name)
+    if "t" in columns and columns["t"].size > 1:
+        step = np.diff(columns["t"]) <= 0
+        if step.any():
+            r = int(np.argmax(step)) + 1
+            raise DataError(
+                f"t must be strictly increasing, but t = {cell_text(r, 't')} does not exceed "
+                f"t = {cell_text(r - 1, 't')} on line {line_no[r - 1]}",
+                int(line_no[r]),
+                "t",
+            )
+
+
 # --------------------------------------------------------------------------- parser
 
 
@@ -508,30 +540,7 @@ def parse_csv(data: bytes | str, kind: str | None = None, max_bytes: int = DEFAU
             name,
         )
 
-    # -- value constraints (MODEL.md §1, §6, §7)
-    rules = {
-        "k": (lambda a: ~(a > 0), "k, the actuation force rate, must be > 0"),
-        "F_ba": (lambda a: ~(a >= 0), "F_ba is a magnitude and must be >= 0"),
-        "dwell": (lambda a: ~(a >= 0), "dwell, a time, must be >= 0"),
-        "direction": (lambda a: ~((a == 1) | (a == -1)), "direction must be +1 or -1"),
-    }
-    checks = [(c, rules[c][0](columns[c])) for c in used if c in rules]
-    violation = _first_bad(checks)
-    if violation is not None:
-        r, name = violation
-        raise DataError(f"{rules[name][1]}, got {cell_text(r, name)}", int(line_no[r]), name)
-
-    if "t" in columns and n > 1:
-        t = columns["t"]
-        step = np.diff(t) <= 0
-        if step.any():
-            r = int(np.argmax(step)) + 1
-            raise DataError(
-                f"t must be strictly increasing, but t = {cell_text(r, 't')} does not exceed "
-                f"t = {cell_text(r - 1, 't')} on line {line_no[r - 1]}",
-                int(line_no[r]),
-                "t",
-            )
+    _validate_values(columns, cell_text, line_no)
 
     if n < MIN_ROWS:
         if n == 0:
