@@ -3,8 +3,6 @@ decided before the upload is read, and internal errors without exception text.""
 
 from __future__ import annotations
 
-import gzip
-
 import pytest
 from fastapi.testclient import TestClient
 

@@ -3,12 +3,9 @@ confidently wrong. Each case is made by seeded code in :mod:`tests.identify.case
 
 from __future__ import annotations
 
-import math
-from pathlib import Path
-
 import pytest
 
-from breakaway.identify import identify, read_csv
+from breakaway.identify import identify
 from breakaway.identify.samples import SAMPLES
 from breakaway.identify.csvdata import parse_csv
 

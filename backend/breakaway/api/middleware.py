@@ -139,7 +139,7 @@ class CatchAll:
 
         try:
             await self.app(scope, receive, tracking_send)
-        except Exception as exc:  # noqa: BLE001 - this is the catch-all
+        except Exception:  # noqa: BLE001 - this is the catch-all
             log.exception("unhandled error on %s %s", scope.get("method"), scope.get("path"))
             if started:
                 return
