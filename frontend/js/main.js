@@ -15,7 +15,7 @@ import {
 } from "./controls.js";
 import { fitReady, fitReport, initDataPanel } from "./datapanel.js";
 import { exportCsv, exportPng } from "./export.js";
-import { PLOT_IDS, breakawayFigure, figures } from "./plots.js";
+import { PLOT_IDS, breakawayFigure, figures, phaseFigure } from "./plots.js";
 import {
   explainBreakaway, rampBody, rampFigure, simulationPhaseTrace,
 } from "./ramp.js";
@@ -338,7 +338,7 @@ async function runRamp() {
 function drawRamp() {
   if (!app.ramp || !app.frame) return Promise.resolve();
   $("ba-explain").textContent = explainBreakaway(app.ramp, app.state);
-  const phase = decorate({ phase: figures(app.frame, app.state, null, null).phase }, ["phase"]).phase;
+  const phase = decorate({ phase: phaseFigure(app.frame, app.state) }, ["phase"]).phase;
   return Promise.all([
     react("ramp", rampFigure(app.ramp, app.state, app.cursor)),
     react("phase", phase),

@@ -437,10 +437,10 @@ def _diagnose(data: Dataset, progress) -> Diagnosis:
     screened = data.kind == "timeseries" and data.n > 1.5 * SCREEN_ROWS
     full_problem = problem_for(data)
     screen = screening_blocks(data, full_problem.d) if screened else data
-    base = fit_model(screen)
+    screen_base = base = fit_model(screen)
     noise = estimate(full_problem)
     if screened:
-        base = refit(data, base, max_nfev=FULL_REFIT_EVALUATIONS)
+        base = refit(data, screen_base, max_nfev=FULL_REFIT_EVALUATIONS)
     command = command_floor(full_problem, noise, base.residual())
     if command is not None:
         noise = command  # the residual's differences already carry the noise of x
@@ -450,7 +450,6 @@ def _diagnose(data: Dataset, progress) -> Diagnosis:
     report(0.1, "screening candidate effects")
 
     loop = _Loop(screen, noise.value, report)
-    screen_base = fit_model(screen, starts=[base.params], screen=1) if screened else base
     available = []
     for effect, why in availability(screen_base.problem).items():
         if why is None:

@@ -93,7 +93,7 @@ BASE_PARAMS: dict[str, Param] = {p.name: p for p in (
 )}
 
 _ROTARY = {"N·s/m": "N·m·s/rad", "m/s": "rad/s", "1/m": "1/rad", "kg": "kg·m²", "N": "N·m",
-           "m": "rad", "m/s²": "rad/s²"}
+           "m": "rad", "m/s²": "rad/s²", "N/s": "N·m/s"}
 
 
 def unit_of(unit: str, rotary: bool) -> str:

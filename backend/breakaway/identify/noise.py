@@ -83,8 +83,7 @@ def _replicate_sigma(F, keys, nuisance=None):
     design[np.arange(sel.size), groups] = 1.0
     extra = levels > 0  # the first level is the reference
     design[np.flatnonzero(extra), groups.max() + levels[extra]] = 1.0
-    _, _, rank, _ = np.linalg.lstsq(design, F[sel], rcond=None)
-    coef = np.linalg.lstsq(design, F[sel], rcond=None)[0]
+    coef, _, rank, _ = np.linalg.lstsq(design, F[sel], rcond=None)
     dev = F[sel] - design @ coef
     dof = sel.size - rank
     if dof < 3:

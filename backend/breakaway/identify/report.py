@@ -27,10 +27,7 @@ def units(data) -> dict[str, str]:
     rotary = is_rotary(data)
     columns = {"F": "N", "F_ba": "N", "x": "m", "v": "m/s", "t": "s", "k": "N/s",
                "dwell": "s", "a": "m/s²"}
-    out = {name: unit_of(u, rotary) for name, u in columns.items()}
-    if rotary:
-        out["k"] = "N·m/s"
-    return out
+    return {name: unit_of(u, rotary) for name, u in columns.items()}
 
 
 def model_entry(fit: FitResult) -> dict:
