@@ -32,6 +32,21 @@ class Settings(BaseSettings):
     #: explorer: its wall-clock budget per request [s] and step budget per rate.
     simulate_timeout_s: float = 20.0
     simulate_max_steps: int = 1_000_000
+    #: Host names the server answers to (the Host header; a port is ignored), comma
+    #: separated; "*" answers any. Localhost by default: a page elsewhere cannot reach
+    #: the server through a rebound DNS name. Set the public name behind a proxy.
+    allowed_hosts: str = "localhost,127.0.0.1,[::1]"
+
+    def host_allowed(self, host: str) -> bool:
+        names = [h.strip().lower() for h in self.allowed_hosts.split(",") if h.strip()]
+        if "*" in names:
+            return True
+        name = host.lower()
+        if name.startswith("["):
+            name = name[: name.find("]") + 1]
+        else:
+            name = name.rsplit(":", 1)[0]
+        return name in names
 
 
 @lru_cache

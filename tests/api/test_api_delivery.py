@@ -65,3 +65,28 @@ def test_an_internal_error_is_a_422_without_exception_text(client, monkeypatch):
     text = response.text
     assert "ZeroDivisionError" not in text and "division" not in text
     assert "cannot evaluate" in text
+
+
+def test_only_allowed_hosts_are_answered(client, monkeypatch):
+    from breakaway.settings import Settings
+
+    assert Settings(allowed_hosts="localhost,127.0.0.1,[::1]").host_allowed("127.0.0.1:8000")
+    assert Settings(allowed_hosts="localhost,[::1]").host_allowed("[::1]:8000")
+    assert not Settings(allowed_hosts="localhost").host_allowed("evil.example:8000")
+    assert Settings(allowed_hosts="*").host_allowed("anything")
+    response = client.get("/api/health", headers={"Host": "rebound.example"})
+    assert response.status_code == 400
+    assert response.json()["detail"][0]["loc"] == ["header", "host"]
+
+
+def test_cross_site_posts_are_refused_and_same_site_ones_pass(client):
+    files = {"file": ("x.csv", b"v,F\n" + b"".join(b"%d,%d\n" % (i + 1, i + 1) for i in range(12)))}
+    evil = client.post("/api/fit/jobs", files=files, headers={"Origin": "https://evil.example"})
+    assert evil.status_code == 403
+    assert evil.json()["detail"][0]["loc"] == ["header", "origin"]
+    assert "content-security-policy" in evil.headers
+    same = client.post("/api/explore", json={}, headers={"Origin": "http://testserver"})
+    assert same.status_code == 200
+    plain = client.post("/api/explore", json={})  # scripts send no Origin
+    assert plain.status_code == 200
+    assert client.get("/api/health", headers={"Origin": "https://evil.example"}).status_code == 200

@@ -12,7 +12,7 @@ from fastapi.staticfiles import StaticFiles
 from .. import __version__
 from ..settings import get_settings
 from .errors import request_validation_handler
-from .middleware import BodySizeLimit, CatchAll, CompressPages, SecurityHeaders
+from .middleware import BodySizeLimit, CatchAll, CompressPages, SameOrigin, SecurityHeaders
 from .fitjobs import FitJobs
 from .routers import assets, explore, fit, health, presets, ramp, samples, simulate
 from .simulation import SimulationRunner
@@ -59,6 +59,7 @@ def create_app() -> FastAPI:
                        upload_limit=settings.max_upload_bytes + 1024 * 1024)
     app.add_middleware(SecurityHeaders)
     app.add_middleware(CompressPages)
+    app.add_middleware(SameOrigin)
     if settings.frontend_dir.is_dir():
         app.mount("/", StaticFiles(directory=settings.frontend_dir, html=True), name="frontend")
     return app
