@@ -304,10 +304,24 @@ class _Loop:
             if heldout < current_heldout:
                 self.rivals |= {e for e, t in trials.items()
                                 if e != effect and t.bic <= trial.bic + MIN_BIC_DROP}
+                self._warn_close(effect, trial, [e for e in passing if e != effect], trials)
                 return [(effect, trial, heldout, self._evidence(effect, current, trial))]
             self.verdicts[effect].reason = (f"the held-out error rises from "
                                             f"{current_heldout:.4g} to {heldout:.4g} N")
         return None
+
+    def _warn_close(self, effect, trial, others, trials):
+        """``indistinguishable`` when another passing candidate explains the data almost as
+        well (its BIC within MIN_BIC_DROP): the data do not decide between the two."""
+        for other in others:
+            gap = trials[other].bic - trial.bic
+            if gap > MIN_BIC_DROP:
+                continue
+            values = ", ".join(f"{k} = {trials[other].params[k]:.4g}" for k in EFFECTS[other].keys)
+            self.warnings.append(warning("indistinguishable", other, (
+                f"{other} explains these data almost as well as {effect} (its BIC is only "
+                f"{gap:.1f} higher; {MIN_BIC_DROP:g} would decide): {effect} is named for "
+                f"the lower BIC, the other reading is {other} with {values}")))
 
     def _settle_indistinguishable(self, passing, trials):
         """MODEL.md §7: on break-away data viscous and detection raise F_ba alike where F̂
