@@ -175,6 +175,8 @@ export function writeControls(state, { except = null } = {}) {
   if (fHat !== except) fHat.value = state.F_hat;
   document.getElementById("sim").checked = Boolean(state.sim);
   document.getElementById("lugre").checked = Boolean(state.lugre);
+  document.getElementById("present").checked = Boolean(state.present);
+  document.body.classList.toggle("present", Boolean(state.present));
 }
 
 /** Show each error under its control and mark the control invalid; clear the others. */

@@ -15,7 +15,7 @@ import {
 } from "./controls.js";
 import { fitReady, fitReport, initDataPanel } from "./datapanel.js";
 import { exportCsv, exportPng } from "./export.js";
-import { PLOT_IDS, breakawayFigure, figures, phaseFigure } from "./plots.js";
+import { PLOT_IDS, breakawayFigure, figures, phaseFigure, styled } from "./plots.js";
 import {
   explainBreakaway, rampBody, rampFigure, simulationPhaseTrace,
 } from "./ramp.js";
@@ -74,6 +74,7 @@ const app = {
 };
 
 const waiting = { ready: [], sim: [], ramp: [] };
+const DARK = window.matchMedia("(prefers-color-scheme: dark)");
 const $ = (id) => document.getElementById(id);
 
 // ---------------------------------------------------------------------------------
@@ -183,7 +184,8 @@ function sameFigure(a, b) {
 const drawn = {};
 
 /** Plotly.react on every plot whose figure changed; an unchanged plot already shows it. */
-function react(id, figure) {
+function react(id, plain) {
+  const figure = styled(plain, { present: Boolean(app.state?.present), dark: DARK.matches });
   const layoutKey = JSON.stringify(figure.layout);
   const last = drawn[id];
   if (last && last.layoutKey === layoutKey && sameFigure(last.data, figure.data)) {
@@ -557,6 +559,13 @@ function wireControls() {
   });
   $("simulate").addEventListener("click", () => scheduleSim(true));
   $("ramp-play").addEventListener("click", togglePlay);
+  $("present").addEventListener("change", () => {
+    app.state.present = $("present").checked;
+    document.body.classList.toggle("present", app.state.present);
+    commit();
+    draw();
+    drawRamp();
+  });
   $("compare-pin").addEventListener("click", pinCurves);
   $("compare-clear").addEventListener("click", clearPinned);
   $("sweep-run").addEventListener("click", runSweep);
@@ -646,6 +655,8 @@ async function init() {
   }
   $("sweep-param").value = "V";
   app.state = fromQuery(window.location.search, app.defaults);
+  document.body.classList.toggle("present", Boolean(app.state.present));
+  $("present").checked = Boolean(app.state.present);
   window.history.replaceState(null, "", toQuery(app.state));
   writeControls(app.state);
   wireControls();

@@ -246,3 +246,36 @@ export function figures(frame, state, sim, lugre) {
 function fmt(value) {
   return Number.isFinite(value) ? String(Number(value.toPrecision(4))) : String(value);
 }
+
+/**
+ * A figure styled for where it is shown: presentation mode (ticks and titles from 18 px,
+ * lines and markers 1.7× heavier) and dark mode (transparent backgrounds, light text).
+ */
+export function styled(figure, { present = false, dark = false } = {}) {
+  if (!present && !dark) return figure;
+  const layout = { ...figure.layout };
+  const ink = dark ? "#e4e7eb" : undefined;
+  const grid = dark ? "#3a414b" : undefined;
+  layout.font = { ...(layout.font ?? {}), ...(present ? { size: 18 } : {}), ...(ink ? { color: ink } : {}) };
+  if (dark) {
+    layout.paper_bgcolor = "rgba(0,0,0,0)";
+    layout.plot_bgcolor = "rgba(0,0,0,0)";
+    if (layout.legend) layout.legend = { ...layout.legend, bgcolor: "rgba(30,34,40,0.8)" };
+  }
+  for (const axis of ["xaxis", "yaxis", "yaxis2"]) {
+    if (!layout[axis]) continue;
+    layout[axis] = {
+      ...layout[axis],
+      ...(present ? { tickfont: { size: 18 } } : {}),
+      ...(grid ? { gridcolor: grid, zerolinecolor: "#6b7380", linecolor: "#6b7380" } : {}),
+    };
+  }
+  if (present) layout.margin = { ...(layout.margin ?? {}), l: 78, b: 60 };
+  const data = present ? figure.data.map((trace) => ({
+    ...trace,
+    ...(trace.line ? { line: { ...trace.line, width: (trace.line.width ?? 1.5) * 1.7 } } : {}),
+    ...(trace.marker && typeof trace.marker.size === "number"
+      ? { marker: { ...trace.marker, size: trace.marker.size * 1.4 } } : {}),
+  })) : figure.data;
+  return { data, layout };
+}

@@ -1,6 +1,6 @@
 // The explorer's whole state, and its round trip through the URL's query string.
 // A state is a plain object: the model parameters (numbers, or the text a person typed
-// when it is not a number yet), F_hat, and the two toggles `sim` and `lugre`.
+// when it is not a number yet), F_hat, and the toggles `sim`, `lugre` and `present`.
 
 import { PARAMS, parseNumber } from "./controls.js";
 
@@ -8,7 +8,7 @@ import { PARAMS, parseNumber } from "./controls.js";
 function paramNames() {
   return PARAMS.map((spec) => spec.name);
 }
-export const TOGGLES = { sim: true, lugre: false };
+export const TOGGLES = { sim: true, lugre: false, present: false };
 
 /** A full state from the server's defaults (GET /api/presets → defaults). */
 export function defaultState(defaults) {
@@ -21,8 +21,7 @@ export function defaultState(defaults) {
 /** The state a preset gives, keeping the toggles of `current`. */
 export function presetState(preset, defaults, current) {
   const state = defaultState({ ...defaults, ...preset.params });
-  state.sim = current.sim;
-  state.lugre = current.lugre;
+  for (const name of Object.keys(TOGGLES)) state[name] = current[name];
   return state;
 }
 
@@ -33,6 +32,7 @@ export function toQuery(state) {
   query.set("F_hat", state.F_hat);
   query.set("sim", state.sim ? "1" : "0");
   query.set("lugre", state.lugre ? "1" : "0");
+  if (state.present) query.set("present", "1");
   return `?${query.toString()}`;
 }
 
@@ -70,12 +70,12 @@ export function exploreBody(state) {
   return body;
 }
 
-/** The body of POST /api/simulate (presliding model) for a valid state and rates. */
 /** Integrator steps per rate the page asks for: the default preset's slowest Fig. 3
  *  ramp needs about 100,000; parameters far from the note's scale (a fitted damper in
  *  kN) would otherwise keep the simulator busy for tens of seconds. */
 export const INTERACTIVE_STEPS = 300_000;
 
+/** The body of POST /api/simulate (presliding model) for a valid state and rates. */
 export function simulateBody(state, rates) {
   const body = { model: "presliding", k: rates, max_steps: INTERACTIVE_STEPS };
   for (const name of ["Fc", "Fs", "V", "delta", "sigma", "s", "z_ba", "m"]) {
