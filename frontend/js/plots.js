@@ -270,7 +270,9 @@ export function styled(figure, { present = false, dark = false } = {}) {
       ...(grid ? { gridcolor: grid, zerolinecolor: "#6b7380", linecolor: "#6b7380" } : {}),
     };
   }
-  if (present) layout.margin = { ...(layout.margin ?? {}), l: 78, b: 60 };
+  if (present) {
+    layout.margin = { ...(layout.margin ?? {}), l: 78, b: 60, ...(layout.yaxis2 ? { r: 96 } : {}) };
+  }
   const data = present ? figure.data.map((trace) => ({
     ...trace,
     ...(trace.line ? { line: { ...trace.line, width: (trace.line.width ?? 1.5) * 1.7 } } : {}),
