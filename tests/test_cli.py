@@ -77,3 +77,29 @@ def test_text_report_lists_warnings_and_undetermined_parameters(tmp_path, capsys
     assert "[single-rate]" in out
     assert "(not determined by the data)" in out
     assert "candidates not accepted:" in out
+
+
+def test_several_files_give_one_summary_row_each(tmp_path, capsys):
+    import csv
+
+    paths = []
+    for name, (kind, effects) in {"a": ("steady", ("viscous",)),
+                                  "b": ("breakaway", ("dwell",))}.items():
+        data, _ = make_dataset(kind, effects, seed=3)
+        path = tmp_path / f"{name}.csv"
+        path.write_text(to_csv(data))
+        paths.append(str(path))
+    bad = tmp_path / "bad.csv"
+    bad.write_text("v,F\n1,2\n")
+    paths.append(str(bad))
+    prefix = tmp_path / "summary"
+    assert main(["fit", *paths, "--jobs", "2", "--summary", str(prefix)]) == 2
+    assert "bad.csv" in capsys.readouterr().err
+    rows = list(csv.DictReader(open(f"{prefix}.csv", encoding="utf-8")))
+    assert [row["file"] for row in rows] == paths
+    assert rows[0]["effects"] == "viscous" and rows[1]["effects"] == "dwell"
+    assert float(rows[0]["error_after"]) < float(rows[0]["error_before"])
+    assert rows[2]["error"].startswith("only 1 data row")
+    table = json.load(open(f"{prefix}.json", encoding="utf-8"))
+    assert [t["effects"] for t in table[:2]] == ["viscous", "dwell"]
+    assert table[0]["kind"] == "steady" and table[1]["rows"] == 120

@@ -25,17 +25,80 @@ def _fit(args: argparse.Namespace) -> int:
     from .identify import DataError, FitError, identify, read_csv
     from .identify.text import format_report
 
+    if len(args.files) > 1 or args.summary:
+        return _fit_many(args)
+    path = args.files[0]
     try:
-        data = read_csv(args.file, kind=args.kind)
+        data = read_csv(path, kind=args.kind)
         result = identify(data, progress=_progress_line(data.n))
     except (DataError, FitError) as err:
-        print(f"breakaway fit: {args.file}: {err}", file=sys.stderr)
+        print(f"breakaway fit: {path}: {err}", file=sys.stderr)
         return 2
     if args.json:
         print(json.dumps(result, indent=2))
     else:
-        print(format_report(result, source=args.file), end="")
+        print(format_report(result, source=path), end="")
     return 0
+
+
+#: Columns of the batch summary, one row per file.
+SUMMARY_COLUMNS = ("file", "kind", "rows", "effects", "error_before", "error_after",
+                   "heldout_before", "heldout_after", "noise_floor", "unexplained",
+                   "warnings", "seconds", "error")
+
+
+def summary_row(path: str, kind: str | None) -> dict:
+    """Identify one file (in a worker process): its row of the batch summary."""
+    from .identify import DataError, FitError, identify, read_csv
+
+    row = dict.fromkeys(SUMMARY_COLUMNS, None)
+    row["file"] = path
+    try:
+        report = identify(read_csv(path, kind=kind))
+    except (DataError, FitError) as err:
+        row["error"] = str(err)[:500]
+        return row
+    row.update(kind=report["kind"], rows=report["n"], effects=" ".join(report["effects"]),
+               error_before=report["error_before"], error_after=report["error_after"],
+               heldout_before=report["heldout"]["before"],
+               heldout_after=report["heldout"]["after"], noise_floor=report["noise_floor"],
+               unexplained=report["unexplained"], seconds=report["seconds"],
+               warnings=" ".join(sorted({w["code"] for w in report["warnings"]})))
+    return row
+
+
+def _fit_many(args: argparse.Namespace) -> int:
+    """Several files: identified on ``--jobs`` local processes, one summary row each,
+    as CSV (stdout, or PREFIX.csv) and JSON (``--json``, or PREFIX.json)."""
+    import csv
+    import io
+    import json
+    from concurrent.futures import ProcessPoolExecutor
+
+    jobs = max(1, args.jobs)
+    if jobs == 1:
+        rows = [summary_row(path, args.kind) for path in args.files]
+    else:
+        with ProcessPoolExecutor(max_workers=jobs) as pool:
+            rows = list(pool.map(summary_row, args.files, [args.kind] * len(args.files)))
+    table = io.StringIO()
+    writer = csv.DictWriter(table, fieldnames=SUMMARY_COLUMNS, lineterminator="\n")
+    writer.writeheader()
+    writer.writerows(rows)
+    if args.summary:
+        with open(f"{args.summary}.csv", "w", encoding="utf-8") as fh:
+            fh.write(table.getvalue())
+        with open(f"{args.summary}.json", "w", encoding="utf-8") as fh:
+            json.dump(rows, fh, indent=2)
+    if args.json:
+        print(json.dumps(rows, indent=2))
+    elif not args.summary:
+        print(table.getvalue(), end="")
+    failed = [row["file"] for row in rows if row["error"]]
+    for row in rows:
+        if row["error"]:
+            print(f"breakaway fit: {row['file']}: {row['error']}", file=sys.stderr)
+    return 2 if failed else 0
 
 
 #: Fits of at least this many rows print a progress line on stderr.
@@ -72,8 +135,13 @@ def build_parser() -> argparse.ArgumentParser:
     serve.add_argument("--host", default=None, help="bind address (default 127.0.0.1)")
     serve.add_argument("--port", type=int, default=None, help="port (default 8000)")
     serve.set_defaults(handler=_serve)
-    fit = commands.add_parser("fit", help="fit a measured CSV and report the effects found")
-    fit.add_argument("file", help="CSV file (MODEL.md §6)")
+    fit = commands.add_parser("fit", help="fit measured CSVs and report the effects found")
+    fit.add_argument("files", nargs="+", metavar="FILE",
+                     help="CSV file(s) (MODEL.md §6); several give one summary row each")
+    fit.add_argument("--jobs", type=int, default=1,
+                     help="local worker processes for several files (default 1)")
+    fit.add_argument("--summary", metavar="PREFIX", default=None,
+                     help="write the summary table to PREFIX.csv and PREFIX.json")
     fit.add_argument("--kind", choices=("timeseries", "steady", "breakaway"), default=None,
                      help="data kind (default: from a '# kind:' line or the columns)")
     fit.add_argument("--json", action="store_true", help="print the JSON report (MODEL.md §8)")
