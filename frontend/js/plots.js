@@ -48,6 +48,7 @@ export function stribeckFigure(frame) {
     type: "scatter", mode: "lines", name: "Fss(v)",
     x: frame.stribeck.v, y: frame.stribeck.F,
     line: { color: COLORS.curve, width: 2 },
+    hovertemplate: "v = %{x:.3g} m/s<br>Fss = %{y:.4g} N<extra></extra>",
   }];
   return { data, layout: baseLayout("stribeck", { showlegend: false }) };
 }
@@ -129,7 +130,7 @@ export function phaseFigure(frame, state) {
       type: "scatter", mode: "lines", name: label,
       x: xs, y: ys, customdata: ks, connectgaps: false,
       line: { color: COLORS.family, width: 1 },
-      hovertemplate: "k = %{customdata} N/s<br>z = %{x:.3f}<br>ẋ = %{y:.4g} m/s<extra></extra>",
+      hovertemplate: "k = %{customdata:.4g} N/s<br>z = %{x:.3f}<br>ẋ = %{y:.3g} m/s<extra></extra>",
     },
     {
       type: "scatter", mode: "lines", name: `current k = ${fmt(current.k)}`,
@@ -192,6 +193,7 @@ export function breakawayFigure(frame, state, sim = null, lugre = null) {
     type: "scatter", mode: "lines", name: F_HAT_LABEL[name],
     x: ba.k, y: ba[name],
     line: { color: COLORS[name], width: name === state.F_hat ? 3 : 1.3 },
+    hovertemplate: `${F_HAT_LABEL[name]}<br>k = %{x:.3g} N/s<br>F_ba = %{y:.4g} N<extra></extra>`,
   }));
   const k = Number(state.k);
   const yCurrent = interpolate(ba.k, ba[state.F_hat], k);
