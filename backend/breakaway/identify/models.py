@@ -23,7 +23,7 @@ from ..presliding import _presliding_kernel
 from ..quasistatic import e12_velocity
 from ..steady import stribeck_kernel
 from .csvdata import Dataset
-from .effects import BREAKAWAY_Z, EFFECTS, engaged_presliding, param_spec
+from .effects import BREAKAWAY_Z, EFFECTS, MIN_RATES, engaged_presliding, param_spec
 from .kinematics import REVERSAL_STEPS, direction, position_noise, quantum, velocity
 
 
@@ -433,8 +433,6 @@ def problem_for(data: Dataset, effects=(), fixed=None) -> Problem:
     (MODEL.md §8 ``single-rate``).
     """
     if data.kind == "breakaway":
-        from .effects import MIN_RATES
-
         level_only = np.unique(data.columns["k"]).size < MIN_RATES
         return BreakawayProblem(data, effects, fixed, level_only=level_only)
     return PROBLEMS[data.kind](data, effects, fixed)

@@ -48,8 +48,8 @@ def report(diagnosis: Diagnosis) -> dict:
 
     Besides the §8 keys: each step's held-out error ``heldout``; ``units`` (of the
     columns and of every parameter, linear or rotary); ``noise_method`` (how the floor
-    was estimated); ``screened_rows`` (rows of the decimated copy the candidates were
-    screened on, 0 when every row was used) and ``seconds`` (wall time).
+    was estimated); ``screened_rows`` (rows of the blocks the candidates were screened
+    on, 0 when every row was used) and ``seconds`` (wall time).
     """
     d = diagnosis
     return {
