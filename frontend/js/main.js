@@ -15,6 +15,7 @@ import {
 } from "./controls.js";
 import { fitReady, fitReport, initDataPanel } from "./datapanel.js";
 import { exportCsv, exportPng } from "./export.js";
+import { PLOT_CONFIG, drawFigure, onSchemeChange, pageStyle } from "./draw.js";
 import { PLOT_IDS, breakawayFigure, figures, phaseFigure, styled } from "./plots.js";
 import {
   explainBreakaway, rampBody, rampFigure, simulationPhaseTrace,
@@ -29,26 +30,15 @@ import {
 const SIM_DEBOUNCE_MS = 350;
 const RAMP_DEBOUNCE_MS = 60;
 const PLAY_SECONDS = 4;
-const PLOT_CONFIG = {
-  responsive: true,
-  displaylogo: false,
-  showSendToCloud: false,
-  showEditInChartStudio: false,
-  showLink: false,
-  modeBarButtonsToRemove: ["select2d", "lasso2d", "toImage", "sendDataToCloud"],
-};
-
-/** Plotly's modebar buttons are links in the tab order; the page's own buttons (export,
- *  play) do what they do, so the modebar leaves the keyboard path. */
-function untab(element) {
-  for (const button of element.querySelectorAll(".modebar-btn")) button.tabIndex = -1;
-}
+/** The explorer's plots export through the page's own buttons (CSV, PNG). */
+const EXPLORER_CONFIG = { modeBarButtonsToRemove: [...PLOT_CONFIG.modeBarButtonsToRemove, "toImage"] };
 
 const app = {
   defaults: null,
   presets: [],
   state: null,
   frame: null,
+  frameKey: null, // the /api/explore body the frame answers
   frames: 0,
   reacts: 0, // Plotly.react calls (plots whose figure did not change are left alone)
   version: 0,
@@ -65,6 +55,7 @@ const app = {
   rampKey: null,
   rampController: null,
   rampTimer: null,
+  rampFrames: 0, // ramp experiments drawn
   cursor: null, // play: the time cursor [s]
   playing: null, // requestAnimationFrame id
   pinned: null, // plot id -> faded reference traces
@@ -74,7 +65,6 @@ const app = {
 };
 
 const waiting = { ready: [], sim: [], ramp: [] };
-const DARK = window.matchMedia("(prefers-color-scheme: dark)");
 const $ = (id) => document.getElementById(id);
 
 // ---------------------------------------------------------------------------------
@@ -92,7 +82,9 @@ function setBusy(busy) {
 }
 
 function updateSimBusy() {
-  app.simBusy = Boolean(app.simTimer || app.simController || app.lugreController);
+  // a frame on its way schedules the simulation when it is drawn
+  const frameDue = app.busy && Boolean(app.state?.sim) && Boolean(app.exploreController || app.frames === 0);
+  app.simBusy = Boolean(app.simTimer || app.simController || app.lugreController || frameDue);
   $("plots").dataset.simReady = app.simBusy ? "false" : "true";
   if (!app.simBusy) flush("sim");
 }
@@ -127,17 +119,29 @@ function refresh() {
     cancelRamp();
     $("plots").dataset.valid = "false";
     setBusy(false);
+    updateSimBusy();
     return;
   }
   $("plots").dataset.valid = "true";
   const controller = new AbortController();
   app.exploreController = controller;
   setBusy(true);
+  // the pending simulation and ramp are for the state just left: drop them now, so they
+  // do not compete with this frame (they are scheduled again once it is drawn)
+  cancelSim();
+  cancelRamp();
   const started = performance.now();
-  postJSON("/api/explore", exploreBody(app.state), controller.signal)
+  const body = exploreBody(app.state);
+  const key = JSON.stringify(body);
+  // a change the model's curves do not depend on (the mass m) needs no new frame
+  const frameAsked = app.frame && key === app.frameKey
+    ? Promise.resolve(app.frame)
+    : postJSON("/api/explore", body, controller.signal);
+  frameAsked
     .then(async (frame) => {
       if (version !== app.version) return;
       app.frame = frame;
+      app.frameKey = key;
       markSimStale();
       await draw();
       if (version !== app.version) return;
@@ -185,7 +189,7 @@ const drawn = {};
 
 /** Plotly.react on every plot whose figure changed; an unchanged plot already shows it. */
 function react(id, plain) {
-  const figure = styled(plain, { present: Boolean(app.state?.present), dark: DARK.matches });
+  const figure = styled(plain, pageStyle());
   const layoutKey = JSON.stringify(figure.layout);
   const last = drawn[id];
   if (last && last.layoutKey === layoutKey && sameFigure(last.data, figure.data)) {
@@ -194,8 +198,7 @@ function react(id, plain) {
   drawn[id] = { data: figure.data, layoutKey };
   app.reacts += 1;
   const element = $(`plot-${id}`);
-  return window.Plotly.react(element, figure.data, figure.layout, PLOT_CONFIG)
-    .then(() => untab(element));
+  return drawFigure(element, figure, { config: EXPLORER_CONFIG, shown: true });
 }
 
 function draw() {
@@ -219,7 +222,7 @@ function decorate(figs, ids = PLOT_IDS) {
   }
   if (app.measured && ids.includes(app.measured.plot)) {
     out[app.measured.plot] = withTraces(out[app.measured.plot], [{
-      type: "scattergl", mode: "markers", name: "measured", x: app.measured.x, y: app.measured.y,
+      type: "scatter", mode: "markers", name: "measured", x: app.measured.x, y: app.measured.y,
       marker: { color: "rgba(90, 90, 90, 0.45)", size: 4 }, hoverinfo: "skip",
     }]);
   }
@@ -327,6 +330,8 @@ async function runRamp() {
     app.rampKey = key;
     stopPlay();
     await drawRamp();
+    app.rampFrames += 1;
+    $("plots").dataset.rampFrame = String(app.rampFrames);
   } catch (error) {
     if (error.name === "AbortError" || controller !== app.rampController) return;
     $("ba-explain").textContent = `The ramp experiment could not be simulated: ${error.message}`;
@@ -563,6 +568,11 @@ function wireControls() {
     app.state.present = $("present").checked;
     document.body.classList.toggle("present", app.state.present);
     commit();
+    draw();
+    drawRamp();
+  });
+  onSchemeChange(() => {
+    if (!app.frame) return;
     draw();
     drawRamp();
   });

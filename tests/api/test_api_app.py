@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 
 from breakaway import __version__
-from breakaway.api.routers.assets import PLOTLY_JS
+from breakaway.api.routers.assets import PLOTLY_BUNDLE
 from breakaway.params import DEFAULTS, LUGRE_1995, PRESET_DESCRIPTIONS, PRESETS
 from breakaway.settings import get_settings
 
@@ -49,11 +49,12 @@ def test_frontend_has_no_inline_script_or_handler():
         assert not re.search(r"\son[a-z]+\s*=", html), f"inline event handler in {page}"
 
 
-def test_plotly_is_served_from_the_installed_package(client):
+def test_plotly_is_served_from_the_vendored_bundle(client):
     response = client.get("/vendor/plotly.min.js")
     assert response.status_code == 200
     assert response.headers["content-type"].startswith("text/javascript")
-    assert response.content == Path(PLOTLY_JS).read_bytes()
+    assert response.content == (FRONTEND / PLOTLY_BUNDLE).read_bytes()
+    assert (FRONTEND / "vendor" / "LICENSE-plotly.js.txt").read_text().startswith("MIT License")
     html = client.get("/").text
     assert 'src="/vendor/plotly.min.js"' in html
     assert "cdn" not in html.lower()
