@@ -13,20 +13,13 @@ import {
   cancelJob, isActive, pollJob, residualsCsv, sampleFile, submitFit,
 } from "./fitjob.js";
 import { PARAMS, roundSignificant } from "./controls.js";
+import { drawFigure, onSchemeChange } from "./draw.js";
 import { download } from "./export.js";
 import { fitFigures, formatNumber, modelCaption } from "./fitplots.js";
 import {
   element, plotCard, renderErrorTable, renderParamTable, renderSteps, renderSummary,
 } from "./fitview.js";
 
-const PLOT_CONFIG = {
-  responsive: true,
-  displaylogo: false,
-  showSendToCloud: false,
-  showEditInChartStudio: false,
-  showLink: false,
-  modeBarButtonsToRemove: ["select2d", "lasso2d", "sendDataToCloud"],
-};
 /** Explorer parameters that "Use these parameters" sets (rounded to this many digits). */
 const DIGITS = 6;
 const SYMBOLS = { Fc: "Fc", Fs: "Fs", V: "V", delta: "δ", s: "s", sigma: "σ" };
@@ -41,6 +34,7 @@ const panel = {
   samples: [],
   applyParams: null,
   quiz: null, // {answer: [effects] | "none" | "outside"} while a puzzle is unrevealed
+  figures: null, // the shown fit's figures, redrawn when the page's style changes
 };
 
 /** Effects of the library per data kind (MODEL.md §7), for the quiz's choices. */
@@ -277,6 +271,7 @@ function clearResults() {
   for (const div of results.querySelectorAll(".fit-plot")) {
     if (window.Plotly && div.data) window.Plotly.purge(div);
   }
+  panel.figures = null;
   $("fit-effect-plots").replaceChildren();
   $("use-note").textContent = "";
 }
@@ -346,11 +341,18 @@ async function showResults(job) {
     `fit-plot-effect-${effect}`, `${effect}: residual against ${regressor}`,
     `Where ${effect} showed: the residual against ${regressor} before (grey) and after (blue).`)));
   $("fit-results").hidden = false; // visible before drawing, so the plots take their size
-  await Promise.all([
-    window.Plotly.react($("fit-plot-model"), figures.model.data, figures.model.layout, PLOT_CONFIG),
-    window.Plotly.react($("fit-plot-residual"), figures.residual.data, figures.residual.layout, PLOT_CONFIG),
-    ...figures.effects.map(({ effect, figure }) => window.Plotly.react(
-      $(`fit-plot-effect-${effect}`), figure.data, figure.layout, PLOT_CONFIG)),
+  panel.figures = figures;
+  await drawFitFigures();
+}
+
+/** The fit's figures as the page is shown now (again when its style changes). */
+function drawFitFigures() {
+  const figures = panel.figures;
+  if (!figures || $("fit-results").hidden) return Promise.resolve();
+  return Promise.all([
+    drawFigure($("fit-plot-model"), figures.model),
+    drawFigure($("fit-plot-residual"), figures.residual),
+    ...figures.effects.map(({ effect, figure }) => drawFigure($(`fit-plot-effect-${effect}`), figure)),
   ]);
 }
 
@@ -471,6 +473,8 @@ export function initDataPanel({ applyParams }) {
     $("quiz-reveal").disabled = !$("quiz-guess").value;
   });
   $("quiz-reveal").addEventListener("click", revealQuiz);
+  $("present").addEventListener("change", drawFitFigures);
+  onSchemeChange(drawFitFigures);
   wireDropZone();
   // leaving the page mid-fit frees the server's worker
   window.addEventListener("pagehide", () => {

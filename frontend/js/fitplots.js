@@ -193,10 +193,24 @@ export function inUnits(title, units, forceUnit) {
   return wanted ? `${name} [${wanted}]` : title;
 }
 
+/** "name = %{x:.4g} unit" for a hover label, from an axis title "name [unit]". */
+function hoverPart(title, variable) {
+  const match = /^(.*) \[(.*)\]$/.exec(title ?? "");
+  const [name, unit] = match ? [match[1], match[2]] : [title ?? variable, ""];
+  const shown = unit === "-" || unit === "±1" ? "" : ` ${unit}`;
+  return `${name} = %{${variable}:.4g}${shown}`;
+}
+
+/** The axis titles in the data's units, and every trace's hover label in them too. */
 function relabel(figure, units, forceUnit) {
   for (const axis of ["xaxis", "yaxis"]) {
     const title = figure.layout[axis]?.title;
     if (title && typeof title.text === "string") title.text = inUnits(title.text, units, forceUnit);
+  }
+  const x = hoverPart(figure.layout.xaxis?.title?.text, "x");
+  const y = hoverPart(figure.layout.yaxis?.title?.text, "y");
+  for (const trace of figure.data) {
+    trace.hovertemplate = `${trace.name}<br>${x}<br>${y}<extra></extra>`;
   }
   return figure;
 }

@@ -4,19 +4,23 @@
 
 export const PLOT_IDS = ["stribeck", "hysteresis", "phase", "breakaway"];
 
+// Okabe–Ito's colour-blind-safe palette; the four F̂ curves also differ by dash, so no
+// pair in a plot tells apart by hue alone.
 const COLORS = {
-  Fc: "#1f77b4",
-  Fs: "#d62728",
-  avg: "#2ca02c",
-  self: "#9467bd",
+  Fc: "#0072b2",
+  Fs: "#d55e00",
+  avg: "#009e73",
+  self: "#cc79a7",
   family: "#b8bcc4",
   current: "#e6550d",
-  curve: "#1f4e99",
+  curve: "#0072b2",
   sim: "#111111",
   lugre: "#8c564b",
   forward: "#0072b2",
   backward: "#e69f00",
 };
+
+const F_HAT_DASH = { Fc: "solid", Fs: "dash", avg: "solid", self: "dot" };
 
 const F_HAT_LABEL = { Fc: "F̂ = Fc", Fs: "F̂ = Fs", avg: "F̂ = avg", self: "F̂ = self" };
 
@@ -150,7 +154,9 @@ export function phaseFigure(frame, state) {
   const layout = baseLayout("phase", {
     yaxis: { title: { text: `${AXES.phase.y} (log)`, standoff: 4 }, type: "log",
       exponentformat: "power" },
-    legend: { x: 0, xanchor: "left", y: 1, bgcolor: "rgba(255,255,255,0.75)" },
+    // below the plot: inside, it covered the log axis and the family's slow end
+    legend: { orientation: "h", x: 0, y: -0.2, yanchor: "top" },
+    margin: { l: 58, r: 12, t: 8, b: 80 },
   });
   return { data, layout };
 }
@@ -192,7 +198,7 @@ export function breakawayFigure(frame, state, sim = null, lugre = null) {
   const data = ["Fc", "Fs", "avg", "self"].map((name) => ({
     type: "scatter", mode: "lines", name: F_HAT_LABEL[name],
     x: ba.k, y: ba[name],
-    line: { color: COLORS[name], width: name === state.F_hat ? 3 : 1.3 },
+    line: { color: COLORS[name], width: name === state.F_hat ? 3 : 1.3, dash: F_HAT_DASH[name] },
     hovertemplate: `${F_HAT_LABEL[name]}<br>k = %{x:.3g} N/s<br>F_ba = %{y:.4g} N<extra></extra>`,
   }));
   const k = Number(state.k);
@@ -201,6 +207,7 @@ export function breakawayFigure(frame, state, sim = null, lugre = null) {
     type: "scatter", mode: "markers", name: `current k = ${fmt(k)}`,
     x: [k], y: [yCurrent],
     marker: { color: COLORS.current, size: 11, symbol: "circle", line: { color: "#fff", width: 1 } },
+    hovertemplate: "current k<br>k = %{x:.3g} N/s<br>F_ba = %{y:.4g} N<extra></extra>",
   });
   if (sim) {
     const opacity = sim.stale ? 0.35 : 1;
@@ -208,11 +215,13 @@ export function breakawayFigure(frame, state, sim = null, lugre = null) {
       type: "scatter", mode: "markers", name: "ramp sim.: u(t_ba)",
       x: sim.k, y: sim.u_ba, opacity,
       marker: { color: COLORS.sim, size: 7, symbol: "circle" },
+      hovertemplate: "ramp simulation<br>k = %{x:.3g} N/s<br>u(t_ba) = %{y:.4g} N<extra></extra>",
     });
     data.push({
       type: "scatter", mode: "markers", name: "ramp sim.: F(t_ba)",
       x: sim.k, y: sim.F_ba, opacity,
       marker: { color: COLORS.sim, size: 7, symbol: "circle-open" },
+      hovertemplate: "ramp simulation<br>k = %{x:.3g} N/s<br>F(t_ba) = %{y:.4g} N<extra></extra>",
     });
   }
   if (lugre) {
@@ -220,6 +229,7 @@ export function breakawayFigure(frame, state, sim = null, lugre = null) {
       type: "scatter", mode: "markers", name: "LuGre 1995: max F",
       x: lugre.k, y: lugre.F_ba, opacity: lugre.stale ? 0.35 : 1,
       marker: { color: COLORS.lugre, size: 8, symbol: "diamond" },
+      hovertemplate: "LuGre 1995<br>k = %{x:.3g} N/s<br>max F = %{y:.4g} N<extra></extra>",
     });
   }
   const [lo, hi] = extent(data.flatMap((trace) => trace.y));
@@ -229,7 +239,7 @@ export function breakawayFigure(frame, state, sim = null, lugre = null) {
     line: { color: COLORS.current, width: 1, dash: "dash" },
   });
   const layout = baseLayout("breakaway", {
-    legend: { orientation: "h", x: 0, y: -0.2, yanchor: "top", font: { size: 10 } },
+    legend: { orientation: "h", x: 0, y: -0.2, yanchor: "top" },
     margin: { l: 58, r: 12, t: 8, b: 80 },
   });
   return { data, layout };
@@ -273,7 +283,9 @@ export function styled(figure, { present = false, dark = false } = {}) {
     };
   }
   if (present) {
-    layout.margin = { ...(layout.margin ?? {}), l: 78, b: 60, ...(layout.yaxis2 ? { r: 96 } : {}) };
+    // room for the larger ticks, and for a legend below the plot in its larger type
+    const bottom = Math.max(60, (layout.margin?.b ?? 42) + 24);
+    layout.margin = { ...(layout.margin ?? {}), l: 78, b: bottom, ...(layout.yaxis2 ? { r: 96 } : {}) };
   }
   const data = present ? figure.data.map((trace) => ({
     ...trace,

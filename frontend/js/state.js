@@ -66,7 +66,10 @@ export function matchingPreset(state, presets) {
 /** The body of POST /api/explore for a valid state. */
 export function exploreBody(state) {
   const body = { F_hat: state.F_hat };
-  for (const name of paramNames()) body[name] = parseNumber(state[name]);
+  for (const name of paramNames()) {
+    // the quasi-static frame does not use the mass: moving m asks for no new frame
+    if (name !== "m") body[name] = parseNumber(state[name]);
+  }
   return body;
 }
 

@@ -54,9 +54,11 @@ export function sweepTraces(sweep, state, label) {
     const name = `${label} = ${sweep.values[i]}`;
     const color = SWEEP_COLORS[i % SWEEP_COLORS.length];
     breakaway.push({ type: "scatter", mode: "lines", name, legendgroup: `sweep-${i}`,
-      x: frame.breakaway.k, y: frame.breakaway[state.F_hat], line: { color, width: 1.6 } });
+      x: frame.breakaway.k, y: frame.breakaway[state.F_hat], line: { color, width: 1.6 },
+      hovertemplate: `${name}<br>k = %{x:.3g} N/s<br>F_ba = %{y:.4g} N<extra></extra>` });
     hysteresis.push({ type: "scatter", mode: "lines", name, legendgroup: `sweep-${i}`,
-      x: frame.hysteresis.x, y: frame.hysteresis.F, line: { color, width: 1.2 } });
+      x: frame.hysteresis.x, y: frame.hysteresis.F, line: { color, width: 1.2 },
+      hovertemplate: `${name}<br>x = %{x:.3g} m<br>F = %{y:.3g} N<extra></extra>` });
   });
   return { breakaway, hysteresis };
 }

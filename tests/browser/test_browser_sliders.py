@@ -79,13 +79,21 @@ def test_mass_slider_moves_only_the_simulated_points(explorer):
     explorer.open("?sim=1")
     explorer.sim_ready()
     before = snapshot(explorer)
+    asked = []
+    explorer.page.on("request", lambda r: asked.append(r.url.rsplit("/", 1)[-1]))
+    ramps = explorer.page.locator("#plots").get_attribute("data-ramp-frame")
     slider = explorer.page.get_by_label("m [kg] slider", exact=True)
     slider.focus()
     slider.press("PageUp")
     explorer.ready()
     explorer.sim_ready()
+    explorer.page.evaluate("window.breakaway.rampReady()")
     state = explorer.state()
     assert state["m"] > DEFAULTS["m"]
+    # the quasi-static frame does not use m: no new frame is asked for, the simulations
+    # (the ramp and the break-away points) are
+    assert "explore" not in asked and {"simulate", "ramp"} <= set(asked)
+    assert int(explorer.page.locator("#plots").get_attribute("data-ramp-frame")) == int(ramps) + 1
     after = snapshot(explorer)
     for plot in ("stribeck", "hysteresis", "phase"):
         assert after[plot] == before[plot]

@@ -49,3 +49,51 @@ def test_print_shows_the_plots_without_the_controls(explorer):
     assert not explorer.page.locator("#controls").is_visible()
     assert explorer.page.locator("#plot-breakaway").is_visible()
     assert explorer.page.locator("#ba-explain").is_visible()
+
+
+OKABE_ITO = {"#0072b2", "#d55e00", "#009e73", "#cc79a7", "#e69f00", "#56b4e9", "#f0e442"}
+
+
+def test_the_break_away_curves_differ_by_more_than_red_and_green(explorer):
+    explorer.open("?sim=0")
+    curves = explorer.page.evaluate(
+        """() => document.getElementById('plot-breakaway').data
+             .filter((t) => t.name.startsWith('F̂ = '))
+             .map((t) => [t.line.color, t.line.dash])""")
+    assert len(curves) == 4
+    assert {color for color, _ in curves} <= OKABE_ITO
+    # the two Okabe–Ito hues nearest to red and green also differ by dash
+    styles = dict(curves)
+    assert styles["#d55e00"] != styles["#009e73"]
+
+
+def test_every_tooltip_names_its_units(explorer):
+    explorer.open("?sim=1")
+    explorer.sim_ready()
+    templates = explorer.page.evaluate(
+        """() => ['stribeck', 'hysteresis', 'phase', 'breakaway', 'ramp'].flatMap((id) =>
+             document.getElementById('plot-' + id).data
+               .filter((t) => t.hoverinfo !== 'skip')
+               .map((t) => [id, t.name, t.hovertemplate || null]))""")
+    assert len(templates) >= 14
+    for plot, name, template in templates:
+        assert template, f"{plot}: {name} has Plotly's default tooltip"
+        assert any(unit in template for unit in (" N", " m/s", " m<", " s<", " N/s")), (plot, name)
+        # 3–4 significant digits, never Plotly's default 7
+        assert all(spec in {".3g", ".4g", ".3f"} for spec in _formats(template)), (plot, name)
+
+
+def _formats(template: str) -> list[str]:
+    import re
+    return re.findall(r"%\{[a-z]+:([^}]+)\}", template)
+
+
+def test_the_phase_legend_sits_below_the_axes(explorer):
+    explorer.open("?sim=0")
+    legend = layout(explorer, "phase", "legend")
+    assert legend["orientation"] == "h" and legend["y"] < 0
+    below = explorer.page.evaluate(
+        """() => { const gd = document.getElementById('plot-phase');
+             const top = gd.getBoundingClientRect().top, size = gd._fullLayout._size;
+             return gd.querySelector('.legend').getBoundingClientRect().top - top - (size.t + size.h); }""")
+    assert below > 0  # the legend starts under the plot area, clear of both axes

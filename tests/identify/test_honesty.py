@@ -137,11 +137,14 @@ def test_rows_at_rest_are_dropped_with_a_warning(reports):
 
 
 def test_friction_rising_at_low_speed_is_flagged(reports):
-    # E2 with δ > 0 cannot rise with speed: the fit ends on a bound of the levels (Fs = Fc,
-    # or Fc → 0 with the rise taken by σ), and the report says so
+    # E2 with δ > 0 cannot rise with speed: the fit ends on a bound of the Stribeck shape
+    # (Fs = Fc, Fc → 0 with the rise taken by σ, or V below the slowest speed measured,
+    # which hides the fall), and the report says so. Which bound depends on the
+    # optimiser's path and the library versions (numpy 2.4 + scipy 1.17 end on V, earlier
+    # installs ended on Fs): both are honest.
     report, _ = reports("strengthening_steady")
     flagged = {w["parameter"] for w in report["warnings"] if w["code"] == "at-bound"}
-    assert flagged & {"Fc", "Fs"}
+    assert flagged & {"Fc", "Fs", "V"}
     for name in flagged:
         assert report["final"]["determined"][name] is False
     assert report["unexplained"] is True

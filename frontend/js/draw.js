@@ -1,0 +1,39 @@
+// Where figures meet Plotly, for the explorer and the data panel alike: the toolbar this
+// app wants (no cloud or Chart Studio buttons, no logo), the page's presentation mode and
+// colour scheme applied to the figure, and the modebar kept out of the keyboard path.
+
+import { styled } from "./plots.js";
+
+export const PLOT_CONFIG = {
+  responsive: true,
+  displaylogo: false,
+  showSendToCloud: false,
+  showEditInChartStudio: false,
+  showLink: false,
+  modeBarButtonsToRemove: ["select2d", "lasso2d", "sendDataToCloud"],
+};
+
+const DARK = window.matchMedia("(prefers-color-scheme: dark)");
+
+/** How the page is shown now: presentation mode (a class on <body>) and dark mode. */
+export function pageStyle() {
+  return { present: document.body.classList.contains("present"), dark: DARK.matches };
+}
+
+/** Call `redraw` when the system switches between light and dark. */
+export function onSchemeChange(redraw) {
+  DARK.addEventListener("change", redraw);
+}
+
+/** Plotly's modebar buttons are links in the tab order; the page's own buttons (export,
+ *  play, downloads) do what they do, so the modebar leaves the keyboard path. */
+function untab(element) {
+  for (const button of element.querySelectorAll(".modebar-btn")) button.tabIndex = -1;
+}
+
+/** Draw a figure as the page is shown (`styled` already applied when `shown`). */
+export function drawFigure(element, figure, { config = {}, shown = false } = {}) {
+  const { data, layout } = shown ? figure : styled(figure, pageStyle());
+  return window.Plotly.react(element, data, layout, { ...PLOT_CONFIG, ...config })
+    .then(() => untab(element));
+}
