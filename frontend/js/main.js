@@ -588,11 +588,14 @@ function wireControls() {
   });
   $("reset").addEventListener("click", () => setState(defaultState(app.defaults)));
   $("copy-link").addEventListener("click", async () => {
+    // said under the button, where the person looks; where the clipboard is refused
+    // (no permission, no secure context) the link is shown to copy by hand
+    const status = $("copy-status");
     try {
       await navigator.clipboard.writeText(window.location.href);
-      $("sim-status").textContent = "Link copied.";
+      status.textContent = "Link copied.";
     } catch {
-      $("sim-status").textContent = `Link: ${window.location.href}`;
+      status.textContent = `Copy this link: ${window.location.href}`;
     }
   });
   for (const button of document.querySelectorAll("[data-export]")) {

@@ -189,3 +189,48 @@ def test_reset_returns_to_the_defaults(explorer):
         assert state[key] == value
     assert explorer.page.get_by_label("Preset", exact=True).input_value() == "fig5"
     assert_plots_match_model(explorer)
+
+
+def test_a_loading_line_shows_until_the_first_frame_is_drawn(explorer, server_url):
+    page = explorer.page
+    held = []
+    page.route("**/api/explore", lambda route: held.append(route))  # held until released
+    page.goto(f"{server_url}/?sim=0")
+    for _ in range(200):
+        if held:
+            break
+        page.wait_for_timeout(25)
+    assert held, "the page asked for no frame"
+    loading = page.locator("#loading")
+    assert loading.is_visible() and "Loading" in loading.inner_text()
+    assert page.locator("#plots").get_attribute("data-ready") == "false"
+    assert page.locator("#plots").get_attribute("aria-busy") == "true"
+    held[0].continue_()
+    explorer.ready()
+    page.unroute("**/api/explore")
+    assert not loading.is_visible()
+    assert page.locator("#plots").get_attribute("aria-busy") == "false"
+
+
+@pytest.mark.parametrize("granted", [True, False])
+def test_copy_link_says_so_next_to_the_button(explorer, granted):
+    explorer.open("?sim=0&Fc=0.8")
+    page = explorer.page
+    if granted:
+        page.context.grant_permissions(["clipboard-read", "clipboard-write"])
+    else:
+        page.context.clear_permissions()
+        page.evaluate("() => { navigator.clipboard.writeText = () => Promise.reject(new Error('denied')); }")
+    button = page.get_by_role("button", name="Copy link")
+    button.click()
+    status = page.locator("#copy-status")
+    status.wait_for(state="visible")
+    expected = "Link copied." if granted else f"Copy this link: {page.url}"
+    assert status.inner_text() == expected
+    if granted:
+        assert page.evaluate("navigator.clipboard.readText()") == page.url
+    # within the viewport and right under the button
+    near, shown = button.bounding_box(), status.bounding_box()
+    assert 0 <= shown["y"] - (near["y"] + near["height"]) < 40
+    assert shown["y"] + shown["height"] <= page.viewport_size["height"]
+    page.context.clear_permissions()
