@@ -28,6 +28,14 @@ DEFAULTS: dict[str, float | str] = {
     "F_hat": "avg",  # steady-state level used in E12
 }
 
+#: Magnitudes the model is evaluated for, in requests and in measured data. Outside
+#: them a number is numerically degenerate rather than physical: k = 5e-324 (subnormal)
+#: divides by zero in the integrator, V = 5e-324 underflows the Stribeck grid, 1e308
+#: overflows the E12 and E13 terms. 1e-30…1e30 holds every physical value in SI (a µN
+#: to a MN, a pm/s to a km/s, a ng to a kt) and keeps products and ratios of a few
+#: parameters finite.
+MAGNITUDE = (1e-30, 1e30)
+
 #: The LuGre comparison model of Canudas de Wit et al. (1995), MODEL.md §5.
 LUGRE_1995: dict[str, float] = {
     "sigma0": 1e5,  # bristle stiffness [N/m]

@@ -55,7 +55,8 @@ def test_busy_fit_workers_answer_429_with_retry_after_before_reading(client, mon
     response = client.post("/api/fit/jobs", files={"file": ("x.csv", b"not even a csv")})
     assert response.status_code == 429
     assert response.headers["retry-after"] == "2"
-    assert "busy" in response.json()["detail"]
+    assert response.json()["detail"][0]["type"] == "busy"
+    assert "busy" in response.json()["detail"][0]["msg"]
 
 
 def test_an_internal_error_is_a_422_without_exception_text(client, monkeypatch):

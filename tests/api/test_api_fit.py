@@ -124,4 +124,5 @@ def test_unknown_job_is_404(client):
     for response in (client.get("/api/fit/jobs/nope"), client.delete("/api/fit/jobs/nope"),
                      client.get("/api/fit/jobs/nope/residuals.csv")):
         assert response.status_code == 404
-        assert response.json() == {"detail": "no such fit job"}
+        assert response.json() == {"detail": [{"type": "not_found", "loc": [],
+                                               "msg": "no such fit job"}]}

@@ -283,13 +283,28 @@ def test_metadata_parsing():
     ],
 )
 def test_bad_metadata_number(value, match):
-    ds = parse_csv(make_csv(columns_for("breakaway", 12), meta={"source": "x", "s": value}))
-    assert ds.meta["s"] == value  # the parse itself accepts any metadata text
+    # the model reads s: a bad one is refused when the file is read, not when a fit starts
     with pytest.raises(DataError, match=match) as info:
-        ds.meta_float("S")
+        parse_csv(make_csv(columns_for("breakaway", 12), meta={"source": "x", "s": value}))
     assert info.value.line == 2
     assert info.value.column is None
     assert str(info.value).startswith("line 2: ")
+
+
+@pytest.mark.parametrize("key, value, match", [
+    ("s", "-1", r"metadata 's' \(the presliding scale\) must be > 0, between 1e-30 and 1e\+30, got '-1'"),
+    ("s", "5e-324", r"metadata 's' .* got '5e-324'"),
+    ("F0", "1e308", r"metadata 'F0' must lie within 1e\+30 in magnitude, got '1e308'"),
+])
+def test_metadata_the_model_reads_is_checked_on_reading(key, value, match):
+    with pytest.raises(DataError, match=match) as info:
+        parse_csv(make_csv(columns_for("breakaway", 12), meta={key: value}))
+    assert info.value.line == 1  # the metadata line, the file's first
+
+
+def test_free_text_metadata_is_not_checked():
+    ds = parse_csv(make_csv(columns_for("breakaway", 12), meta={"source": "bench 3", "sigma": "-2"}))
+    assert ds.meta["sigma"] == "-2"
 
 
 def test_hash_lines_after_header_are_not_metadata():
@@ -507,8 +522,11 @@ def test_t_not_checked_when_ignored():
 @pytest.mark.parametrize(
     "column, text, match",
     [
-        ("k", "0", r"k, the actuation force rate, must be > 0, got 0"),
-        ("k", "-2.5", r"must be > 0, got -2\.5"),
+        ("k", "0", r"k, the actuation force rate, must be > 0 \(between 1e-30 and 1e\+30\), got 0"),
+        ("k", "-2.5", r"must be > 0 \(.*\), got -2\.5"),
+        ("k", "5e-324", r"must be > 0 \(between 1e-30 and 1e\+30\), got 5e-324"),
+        ("F_ba", "1e31", r"F_ba must lie within 1e\+30 in magnitude, got 1e31"),
+        ("dwell", "-1e300", r"dwell, a time, must be >= 0, got -1e300"),
         ("F_ba", "-0.1", r"F_ba is a magnitude and must be >= 0, got -0\.1"),
         ("dwell", "-1", r"dwell, a time, must be >= 0, got -1"),
         ("direction", "0", r"direction must be \+1 or -1, got 0"),

@@ -8,10 +8,11 @@ from typing import AsyncIterator
 from fastapi import APIRouter, FastAPI
 from fastapi.exceptions import RequestValidationError
 from fastapi.staticfiles import StaticFiles
+from starlette.exceptions import HTTPException as StarletteHTTPException
 
 from .. import __version__
 from ..settings import get_settings
-from .errors import request_validation_handler
+from .errors import http_error_handler, request_validation_handler
 from .middleware import BodySizeLimit, CatchAll, CompressPages, SameOrigin, SecurityHeaders
 from .fitjobs import FitJobs
 from .routers import assets, explore, fit, health, presets, ramp, samples, simulate
@@ -49,14 +50,13 @@ def create_app() -> FastAPI:
     app.state.simulations = SimulationRunner()
     app.state.fit_jobs = FitJobs()
     app.add_exception_handler(RequestValidationError, request_validation_handler)
+    app.add_exception_handler(StarletteHTTPException, http_error_handler)
     for router in ROUTERS:
         app.include_router(router)
     # added innermost first: CatchAll sees every exception, SecurityHeaders every response
     app.add_middleware(CatchAll)
-    # uploads get 1 MB of slack over the file limit: multipart framing and form fields,
-    # and room for /api/fit to answer a file just over the limit with its own message
     app.add_middleware(BodySizeLimit, json_limit=settings.max_json_bytes,
-                       upload_limit=settings.max_upload_bytes + 1024 * 1024)
+                       upload_limit=settings.max_upload_bytes)
     app.add_middleware(SecurityHeaders)
     app.add_middleware(CompressPages)
     app.add_middleware(SameOrigin)

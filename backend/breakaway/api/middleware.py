@@ -10,7 +10,7 @@ import logging
 
 from starlette.types import ASGIApp, Message, Receive, Scope, Send
 
-from .errors import error_body
+from .errors import error_body, too_large_body
 
 log = logging.getLogger("breakaway.api")
 
@@ -51,14 +51,19 @@ class SecurityHeaders:
 
 
 class BodySizeLimit:
-    """413 for a request body over the cap: ``json_limit`` for JSON and other bodies,
-    ``upload_limit`` for multipart uploads. Checks Content-Length and counts the bytes
-    actually received (chunked bodies have no length)."""
+    """413 for a request body over the cap, decided before the body is buffered:
+    ``json_limit`` for JSON and other bodies, ``upload_limit`` (the file's limit) for
+    multipart uploads, which get ``framing`` bytes more for the multipart boundaries and
+    form fields. Checks Content-Length and counts the bytes actually received (chunked
+    bodies have no length). The answer names the file's limit, as /api/fit does for a
+    file that fits the framing allowance but not the limit: one limit, one status."""
 
-    def __init__(self, app: ASGIApp, json_limit: int, upload_limit: int) -> None:
+    def __init__(self, app: ASGIApp, json_limit: int, upload_limit: int,
+                 framing: int = 64 * 1024) -> None:
         self.app = app
         self.json_limit = json_limit
         self.upload_limit = upload_limit
+        self.framing = framing
 
     async def __call__(self, scope: Scope, receive: Receive, send: Send) -> None:
         if scope["type"] != "http":
@@ -66,7 +71,9 @@ class BodySizeLimit:
             return
         headers = dict(scope.get("headers", []))
         content_type = headers.get(b"content-type", b"").lower()
-        limit = self.upload_limit if content_type.startswith(b"multipart/") else self.json_limit
+        upload = content_type.startswith(b"multipart/")
+        stated = self.upload_limit if upload else self.json_limit
+        limit = stated + (self.framing if upload else 0)
         length = headers.get(b"content-length")
         if length is not None:
             try:
@@ -74,7 +81,7 @@ class BodySizeLimit:
             except ValueError:
                 too_large = False
             if too_large:
-                await _too_large(send, limit)
+                await _too_large(send, stated, upload)
                 return
         received = 0
         rejected = False
@@ -91,7 +98,7 @@ class BodySizeLimit:
                 if received > limit:
                     rejected = True
                     if not started:
-                        await _too_large(send, limit)
+                        await _too_large(send, stated, upload)
                     return {"type": "http.disconnect"}
             return message
 
@@ -106,9 +113,8 @@ class BodySizeLimit:
         await self.app(scope, counting_receive, guarded_send)
 
 
-async def _too_large(send: Send, limit: int) -> None:
-    body = error_body([{"type": "body_too_large", "loc": ["body"],
-                        "msg": f"request body over the {limit} byte limit"}])
+async def _too_large(send: Send, limit: int, upload: bool) -> None:
+    body = too_large_body(limit, upload)
     await send({"type": "http.response.start", "status": 413,
                 "headers": [(b"content-type", b"application/json"),
                             (b"content-length", str(len(body)).encode())]})

@@ -19,7 +19,7 @@ from pydantic import (
     model_validator,
 )
 
-from ..params import DEFAULTS, LUGRE_1995
+from ..params import DEFAULTS, LUGRE_1995, MAGNITUDE
 from ..settings import get_settings
 
 #: MODEL.md §1: δ ≠ 0, and |δ| ≥ 0.05 in practice.
@@ -50,9 +50,22 @@ def _cap_rates(value: list[float]) -> list[float]:
     return value
 
 
-Delta = Annotated[float, AfterValidator(_check_delta)]
+
+
+def _check_magnitude(value: float | None) -> float | None:
+    low, high = MAGNITUDE
+    if value is not None and value != 0 and not low <= abs(value) <= high:
+        raise ValueError(f"must lie between {low:g} and {high:g} in magnitude "
+                         f"(0 where 0 is allowed), got {value:g}")
+    return value
+
+
+Magnitude = AfterValidator(_check_magnitude)
+Positive = Annotated[float, Field(gt=0), Magnitude]
+NonNegative = Annotated[float, Field(ge=0), Magnitude]
+Delta = Annotated[float, AfterValidator(_check_delta), Magnitude]
 GridSize = Annotated[int, Field(ge=10), AfterValidator(_cap_grid)]
-Rate = Annotated[float, Field(gt=0)]
+Rate = Positive
 Rates = Annotated[list[Rate], Field(min_length=1), AfterValidator(_cap_rates)]
 
 
@@ -61,8 +74,8 @@ class _Levels(BaseModel):
 
     model_config = _STRICT
 
-    Fc: float = Field(DEFAULTS["Fc"], gt=0, description="Coulomb level [N], > 0")
-    Fs: float = Field(DEFAULTS["Fs"], gt=0, validate_default=True,
+    Fc: Positive = Field(DEFAULTS["Fc"], description="Coulomb level [N], > 0")
+    Fs: Positive = Field(DEFAULTS["Fs"], validate_default=True,
                       description="Stribeck (stiction) level [N], >= Fc")
 
     @field_validator("Fs")
@@ -96,15 +109,15 @@ class ExploreGrid(BaseModel):
 class ExploreRequest(_Levels):
     """One explorer redraw; every field is optional (defaults: ``breakaway.params.DEFAULTS``)."""
 
-    V: float = Field(DEFAULTS["V"], gt=0, description="Stribeck velocity [m/s], > 0")
+    V: Positive = Field(DEFAULTS["V"], description="Stribeck velocity [m/s], > 0")
     delta: Delta = Field(DEFAULTS["delta"], description="Stribeck shape exponent, |δ| ≥ 0.05")
-    sigma: float = Field(DEFAULTS["sigma"], ge=0, description="viscous coefficient [N·s/m], ≥ 0")
-    s: float = Field(DEFAULTS["s"], gt=0, description="presliding scale [1/m], > 0")
-    z_ba: float = Field(DEFAULTS["z_ba"], gt=0, lt=1, description="break-away fraction z*, in (0, 1)")
-    m: float = Field(DEFAULTS["m"], gt=0,
+    sigma: NonNegative = Field(DEFAULTS["sigma"], description="viscous coefficient [N·s/m], ≥ 0")
+    s: Positive = Field(DEFAULTS["s"], description="presliding scale [1/m], > 0")
+    z_ba: Positive = Field(DEFAULTS["z_ba"], lt=1, description="break-away fraction z*, in (0, 1)")
+    m: Positive = Field(DEFAULTS["m"],
                      description="moving mass [kg], > 0 (accepted for symmetry with "
                                  "/api/simulate; the quasi-static frame does not use it)")
-    k: float = Field(DEFAULTS["k"], gt=0, description="current force rate [N/s], > 0")
+    k: Positive = Field(DEFAULTS["k"], description="current force rate [N/s], > 0")
     F_hat: FHat = Field(DEFAULTS["F_hat"], description="level F̂ of (E12)")
     grid: ExploreGrid | None = Field(None, description="grid sizes (capped)")
 
@@ -125,14 +138,14 @@ class SimulateRequest(_Levels):
 
     model: Literal["presliding", "lugre"] = Field("presliding", description="which model")
     k: Rates = Field(..., description="force rates [N/s], each > 0 (capped in number)")
-    V: float | None = Field(None, gt=0, description="Stribeck velocity [m/s] (LuGre: vs)")
+    V: Positive | None = Field(None, description="Stribeck velocity [m/s] (LuGre: vs)")
     delta: Delta | None = Field(None, description="shape exponent, |δ| ≥ 0.05")
-    sigma: float | None = Field(None, ge=0, description="viscous coefficient [N·s/m] (LuGre: σ2)")
-    s: float | None = Field(None, gt=0, description="presliding scale [1/m] (presliding only)")
-    z_ba: float | None = Field(None, gt=0, lt=1, description="break-away fraction z* (presliding only)")
-    m: float | None = Field(None, gt=0, description="moving mass [kg]")
-    sigma0: float | None = Field(None, gt=0, description="LuGre bristle stiffness [N/m] (lugre only)")
-    sigma1: float | None = Field(None, ge=0, description="LuGre bristle damping [N·s/m] (lugre only)")
+    sigma: NonNegative | None = Field(None, description="viscous coefficient [N·s/m] (LuGre: σ2)")
+    s: Positive | None = Field(None, description="presliding scale [1/m] (presliding only)")
+    z_ba: Positive | None = Field(None, lt=1, description="break-away fraction z* (presliding only)")
+    m: Positive | None = Field(None, description="moving mass [kg]")
+    sigma0: Positive | None = Field(None, description="LuGre bristle stiffness [N/m] (lugre only)")
+    sigma1: NonNegative | None = Field(None, description="LuGre bristle damping [N·s/m] (lugre only)")
     max_steps: int | None = Field(
         None, ge=1000, description="integrator steps per rate, at most the server's "
         "BREAKAWAY_SIMULATE_MAX_STEPS (the default); a rate that needs more reports null "
@@ -174,7 +187,7 @@ class RampRequest(SimulateRequest):
     """The ramp experiment at one rate (MODEL.md §9 ``/api/ramp``); fields as
     ``/api/simulate`` with a single ``k``, and ``F_hat`` for the E13 value beside it."""
 
-    k: float = Field(..., gt=0, allow_inf_nan=False, description="force rate [N/s], > 0")
+    k: Positive = Field(..., description="force rate [N/s], > 0")
     F_hat: Literal["Fc", "Fs", "avg", "self"] | None = Field(
         None, description="F̂ of the E13 value (default of breakaway.params.DEFAULTS)")
 

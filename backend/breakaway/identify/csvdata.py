@@ -33,6 +33,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..params import MAGNITUDE
+
 __all__ = [
     "KINDS",
     "REQUIRED",
@@ -60,6 +62,14 @@ _EXPECTED = "expected t,x,F (timeseries), v,F (steady) or k,F_ba (breakaway)"
 _BOM = "\ufeff"
 
 
+def _shortened(text: str, limit: int) -> str:
+    """``text`` cut in the middle to at most ``limit`` characters."""
+    if len(text) <= limit:
+        return text
+    keep = limit - 1
+    return text[: keep * 3 // 4] + "…" + text[len(text) - (keep - keep * 3 // 4):]
+
+
 class DataError(ValueError):
     """Bad input: message names the line (1-based, in the file as uploaded) and the column.
 
@@ -84,7 +94,14 @@ class DataError(ValueError):
     column : str or None
     """
 
+    #: Longest message and column name kept: the message quotes the input (a cell, a
+    #: header, a metadata value), and a 200 kB cell must not come back whole.
+    MAX_MESSAGE = 400
+    MAX_COLUMN = 60
+
     def __init__(self, message: str, line: int | None = None, column: str | None = None):
+        message = _shortened(message, self.MAX_MESSAGE)
+        column = None if column is None else _shortened(column, self.MAX_COLUMN)
         self.message = message
         self.line = line
         self.column = column
@@ -393,8 +410,10 @@ def _strip_units(header):
 # --------------------------------------------------------------------------- validation
 
 #: Per-column value rules of MODEL.md §1, §6, §7: (violation mask, what is required).
+_LOW, _HIGH = MAGNITUDE
 _VALUE_RULES = {
-    "k": (lambda a: ~(a > 0), "k, the actuation force rate, must be > 0"),
+    "k": (lambda a: ~((a >= _LOW) & (a <= _HIGH)),
+          f"k, the actuation force rate, must be > 0 (between {_LOW:g} and {_HIGH:g})"),
     "F_ba": (lambda a: ~(a >= 0), "F_ba is a magnitude and must be >= 0"),
     "dwell": (lambda a: ~(a >= 0), "dwell, a time, must be >= 0"),
     "direction": (lambda a: ~((a == 1) | (a == -1)), "direction must be +1 or -1"),
@@ -409,6 +428,12 @@ def _validate_values(columns, cell_text, line_no) -> None:
     if violation is not None:
         r, name = violation
         raise DataError(f"{_VALUE_RULES[name][1]}, got {cell_text(r, name)}",
+                        int(line_no[r]), name)
+    # a number past 1e30 overflows the model's terms: refused wherever it stands
+    huge = _first_bad([(c, np.abs(columns[c]) > _HIGH) for c in columns])
+    if huge is not None:
+        r, name = huge
+        raise DataError(f"{name} must lie within {_HIGH:g} in magnitude, got {cell_text(r, name)}",
                         int(line_no[r]), name)
     if "t" in columns and columns["t"].size > 1:
         step = np.diff(columns["t"]) <= 0
@@ -553,7 +578,7 @@ def parse_csv(data: bytes | str, kind: str | None = None, max_bytes: int = DEFAU
             f"at least {MIN_ROWS} are required"
         )
 
-    return Dataset(
+    dataset = Dataset(
         kind=kind,
         columns=columns,
         meta=meta,
@@ -562,6 +587,22 @@ def parse_csv(data: bytes | str, kind: str | None = None, max_bytes: int = DEFAU
         lines=line_no,
         meta_lines=meta_lines,
     )
+    _validate_meta(dataset)
+    return dataset
+
+
+def _validate_meta(dataset: Dataset) -> None:
+    """The metadata the model reads (MODEL.md §6): ``# s:`` > 0 and ``# F0:`` finite,
+    both within :data:`MAGNITUDE`; checked here so a bad file is refused on upload, not
+    when its fit starts. Other keys (``source``, ``units``, …) are free text."""
+    s = dataset.meta_float("s")
+    if s is not None and not _LOW <= s <= _HIGH:
+        raise DataError(f"metadata 's' (the presliding scale) must be > 0, between {_LOW:g} "
+                        f"and {_HIGH:g}, got {dataset.meta['s']!r}", dataset.meta_lines.get("s"))
+    F0 = dataset.meta_float("F0")
+    if F0 is not None and abs(F0) > _HIGH:
+        raise DataError(f"metadata 'F0' must lie within {_HIGH:g} in magnitude, got "
+                        f"{dataset.meta['f0']!r}", dataset.meta_lines.get("f0"))
 
 
 def read_csv(path, kind: str | None = None, max_bytes: int = DEFAULT_MAX_BYTES) -> Dataset:

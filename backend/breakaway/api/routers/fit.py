@@ -9,7 +9,7 @@ from fastapi.responses import PlainTextResponse, Response
 
 from ...identify import DataError, FitError, identify, parse_csv
 from ...settings import get_settings
-from ..errors import unprocessable
+from ..errors import too_large, unprocessable
 from ..fit_schemas import FitJobStatus, FitReport
 from ..fitjobs import Busy
 
@@ -25,11 +25,15 @@ def _data_error(err: DataError, field: str = "file") -> Response:
     return Response(orjson.dumps(body), status_code=422, media_type="application/json")
 
 
+class _TooLarge(Exception):
+    """The uploaded file is over the upload limit (413, as the middleware answers)."""
+
+
 async def _read_upload(file: UploadFile) -> bytes:
     limit = get_settings().max_upload_bytes
     data = await file.read(limit + 1)
     if len(data) > limit:
-        raise DataError(f"file is over the upload limit of {limit / 1e6:.1f} MB")
+        raise _TooLarge
     return data
 
 
@@ -50,6 +54,8 @@ async def fit(file: UploadFile = File(..., description="CSV file, MODEL.md §6")
     try:
         dataset = await _parse(file, kind)
         return FitReport(**await run_in_threadpool(identify, dataset))
+    except _TooLarge:
+        return too_large(get_settings().max_upload_bytes, upload=True)
     except DataError as err:
         return _data_error(err)
     except FitError as err:
@@ -70,6 +76,8 @@ async def start_fit(request: Request, file: UploadFile = File(...),
                             headers={"Retry-After": str(RETRY_AFTER_S)})
     try:
         dataset = await _parse(file, kind)
+    except _TooLarge:
+        return too_large(get_settings().max_upload_bytes, upload=True)
     except DataError as err:
         return _data_error(err)
     try:
