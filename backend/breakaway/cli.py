@@ -14,7 +14,9 @@ def _serve(args: argparse.Namespace) -> int:
     from .settings import get_settings
 
     settings = get_settings()
-    uvicorn.run("breakaway.api.app:create_app", factory=True,
+    # several worker processes share the port (the kernel spreads connections) and,
+    # through the data directory's job store, the fit jobs; the explorer is stateless
+    uvicorn.run("breakaway.api.app:create_app", factory=True, workers=args.workers,
                 host=args.host or settings.host, port=args.port or settings.port)
     return 0
 
@@ -134,6 +136,8 @@ def build_parser() -> argparse.ArgumentParser:
     serve = commands.add_parser("serve", help="run the explorer (http://127.0.0.1:8000)")
     serve.add_argument("--host", default=None, help="bind address (default 127.0.0.1)")
     serve.add_argument("--port", type=int, default=None, help="port (default 8000)")
+    serve.add_argument("--workers", type=int, default=1,
+                       help="server processes sharing the port and the job store (default 1)")
     serve.set_defaults(handler=_serve)
     fit = commands.add_parser("fit", help="fit measured CSVs and report the effects found")
     fit.add_argument("files", nargs="+", metavar="FILE",

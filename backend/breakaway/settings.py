@@ -8,6 +8,7 @@ from pathlib import Path
 from pydantic_settings import BaseSettings, SettingsConfigDict
 
 _REPO_FRONTEND = Path(__file__).resolve().parents[2] / "frontend"
+_REPO_DATA = Path(__file__).resolve().parents[2] / "data"
 
 
 class Settings(BaseSettings):
@@ -32,6 +33,19 @@ class Settings(BaseSettings):
     #: explorer: its wall-clock budget per request [s] and step budget per rate.
     simulate_timeout_s: float = 20.0
     simulate_max_steps: int = 1_000_000
+    #: Where the server keeps its state: the fit jobs' SQLite store (``jobs.sqlite``).
+    #: Several server processes on one data directory share their jobs.
+    data_dir: Path = _REPO_DATA
+    #: Fit worker processes per server process, and fits that may wait for one; a fit
+    #: beyond both is refused with 429 before its upload is read.
+    fit_workers: int = 2
+    fit_queue: int = 2
+    #: A fit's time limit [s], counted from when it starts running.
+    fit_timeout_s: float = 600.0
+    #: Bounds of the job store: finished jobs older than this [s] are dropped, then the
+    #: oldest until the stored results take at most this many bytes.
+    jobs_max_age_s: float = 86_400.0
+    jobs_max_bytes: int = 256 * 2**20
     #: Host names the server answers to (the Host header; a port is ignored), comma
     #: separated; "*" answers any. Localhost by default: a page elsewhere cannot reach
     #: the server through a rebound DNS name. Set the public name behind a proxy.

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import os
+
 import re
 from pathlib import Path
 
@@ -18,7 +20,7 @@ FRONTEND = get_settings().frontend_dir
 def test_health(client):
     response = client.get("/api/health")
     assert response.status_code == 200
-    assert response.json() == {"status": "ok", "version": __version__}
+    assert response.json() == {"status": "ok", "version": __version__, "worker": os.getpid()}
 
 
 def test_presets_list_every_preset_with_its_parameters(client):

@@ -50,11 +50,11 @@ def test_api_answers_are_not_compressed(client):
 
 
 def test_busy_fit_workers_answer_429_with_retry_after_before_reading(client, monkeypatch):
-    jobs = client.app.state.fit_jobs
+    jobs = client.app.state.fit_workers
     monkeypatch.setattr(jobs, "full", lambda: True)
     response = client.post("/api/fit/jobs", files={"file": ("x.csv", b"not even a csv")})
     assert response.status_code == 429
-    assert response.headers["retry-after"] == "2"
+    assert response.headers["retry-after"] == "5"
     assert response.json()["detail"][0]["type"] == "busy"
     assert "busy" in response.json()["detail"][0]["msg"]
 

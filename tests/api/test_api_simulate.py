@@ -137,20 +137,32 @@ def test_over_the_time_budget_is_a_422_and_the_worker_recovers(make_client):
     assert result["u_ba"][0] == pytest.approx(expected.u_ba[0], rel=1e-12)
 
 
-def test_one_run_at_a_time_and_waiting_counts_against_the_budget():
-    from breakaway.api.simulation import SimulationRunner, SimulationTimeout
+def test_one_run_at_a_time_and_the_budget_counts_from_the_start_of_the_run():
+    import time
+
+    from breakaway.api.simulation import SimulationRunner, SimulationTimeout, SimulatorBusy
 
     runner = SimulationRunner()
     params = {name: DEFAULTS[name] for name in ("Fc", "Fs", "V", "delta", "sigma", "s", "m",
                                                   "z_ba")}
 
     async def scenario():
-        # the first run holds the worker (starting it alone takes far over 0.2 s)
-        first = asyncio.create_task(runner.run(60.0, "presliding", [0.01], params, 1_000_000))
+        # the first run holds the worker for 1.5 s (after the worker's start)
+        first = asyncio.create_task(runner.run(60.0, 1.5, target=time.sleep))
         await asyncio.sleep(0.05)
-        with pytest.raises(SimulationTimeout, match="busy"):
+        with pytest.raises(SimulatorBusy, match="busy for 0.2 s"):
             await runner.run(0.2, "presliding", [1.0], params, 1_000_000)
-        return await first
+        # this one waits over 1.5 s for the worker, longer than its 1.2 s budget, and
+        # still runs: the budget is the run's, from its start
+        loop = asyncio.get_running_loop()
+        asked = loop.time()
+        result = await runner.run(1.2, "presliding", [0.01], params, 1_000_000, wait=30.0)
+        assert loop.time() - asked > 1.2
+        await first
+        # a run over its own budget is ended
+        with pytest.raises(SimulationTimeout, match="longer than 0.5 s"):
+            await runner.run(0.5, 3.0, target=time.sleep)
+        return result
 
     try:
         result = asyncio.run(scenario())

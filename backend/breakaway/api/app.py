@@ -14,7 +14,8 @@ from .. import __version__
 from ..settings import get_settings
 from .errors import http_error_handler, request_validation_handler
 from .middleware import BodySizeLimit, CatchAll, CompressPages, SameOrigin, SecurityHeaders
-from .fitjobs import FitJobs
+from .fitworkers import FitWorkers
+from .jobstore import JobStore
 from .routers import assets, explore, fit, health, presets, ramp, samples, simulate
 from .simulation import SimulationRunner
 
@@ -34,11 +35,12 @@ ROUTERS: list[APIRouter] = [
 @asynccontextmanager
 async def lifespan(app: FastAPI) -> AsyncIterator[None]:
     app.state.simulations.warm_up()  # start the worker now, not on the first click
+    app.state.fit_workers.store.abandon_orphans()  # fits a restart interrupted
     try:
         yield
     finally:
         app.state.simulations.shutdown()
-        app.state.fit_jobs.shutdown()
+        app.state.fit_workers.shutdown()
 
 
 def create_app() -> FastAPI:
@@ -48,7 +50,10 @@ def create_app() -> FastAPI:
                   description="Ruderman's break-away friction model: explorer API "
                               "(MODEL.md §9). Interactive docs at /docs.")
     app.state.simulations = SimulationRunner()
-    app.state.fit_jobs = FitJobs()
+    store = JobStore(settings.data_dir / "jobs.sqlite", max_bytes=settings.jobs_max_bytes,
+                     max_age_s=settings.jobs_max_age_s)
+    app.state.fit_workers = FitWorkers(store, workers=settings.fit_workers,
+                                       queue=settings.fit_queue, timeout_s=settings.fit_timeout_s)
     app.add_exception_handler(RequestValidationError, request_validation_handler)
     app.add_exception_handler(StarletteHTTPException, http_error_handler)
     for router in ROUTERS:

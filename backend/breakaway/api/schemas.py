@@ -317,3 +317,4 @@ class PresetsResponse(BaseModel):
 class Health(BaseModel):
     status: str
     version: str
+    worker: int = Field(description="process id of the server process that answered")

@@ -17,13 +17,29 @@ import threading
 import time
 from concurrent.futures import Future, ProcessPoolExecutor
 from concurrent.futures.process import BrokenProcessPool
-from typing import Any
+from typing import Any, Awaitable, Callable
 
 log = logging.getLogger("breakaway.api")
 
 
 class SimulationTimeout(Exception):
     """The simulation did not finish within its wall-clock budget."""
+
+
+class SimulatorBusy(Exception):
+    """The worker stayed busy with other runs for longer than the request's budget."""
+
+
+class ClientGone(Exception):
+    """The client left while its run went on; the run was ended."""
+
+
+#: Seconds a client is asked to wait when the simulator is busy.
+RETRY_AFTER_S = 2
+#: Seconds between looks at a running simulation's client.
+_POLL_S = 0.25
+#: Seconds a run may go on after its client left before the worker is ended.
+_GRACE_S = 0.5
 
 
 def run_simulation(model: str, k: list[float], params: dict[str, float],
@@ -93,28 +109,28 @@ class SimulationRunner:
     def warm_up(self) -> Future:
         return self._executor().submit(_warm_up)
 
-    async def run(self, timeout: float, *args: Any, target=run_simulation) -> dict[str, Any]:
+    async def run(self, timeout: float, *args: Any, target=run_simulation,
+                  wait: float | None = None,
+                  gone: Callable[[], Awaitable[bool]] | None = None) -> dict[str, Any]:
         """``target(*args)`` (by default :func:`run_simulation`) in the worker, one run
-        at a time, each within ``timeout`` [s] of waiting plus running; a worker that
-        died is replaced once."""
-        deadline = asyncio.get_running_loop().time() + timeout
+        at a time. Waiting for the worker is bounded by ``wait`` [s] (default
+        ``timeout``; then :class:`SimulatorBusy`); the run has its own ``timeout`` [s],
+        counted from its start.
+        ``gone``: whether the client has left; a run it leaves behind is ended within a
+        second (a short one is let finish: ending the worker costs a restart). A worker
+        that died is replaced once."""
         if self._turn is None:
             self._turn = asyncio.Lock()
         try:
-            await asyncio.wait_for(self._turn.acquire(), timeout)
+            await asyncio.wait_for(self._turn.acquire(), timeout if wait is None else wait)
         except asyncio.TimeoutError:
-            raise SimulationTimeout(
-                f"the simulator stayed busy for {timeout:g} s") from None
+            raise SimulatorBusy(f"the simulator stayed busy for "
+                                f"{timeout if wait is None else wait:g} s") from None
         try:
             for attempt in (1, 2):
-                remaining = max(deadline - asyncio.get_running_loop().time(), 0.0)
                 try:
-                    future = self._executor().submit(target, *args)
-                    return await asyncio.wait_for(asyncio.wrap_future(future), remaining)
-                except asyncio.TimeoutError:
-                    self._restart()  # only this request's run is in the worker
-                    raise SimulationTimeout(
-                        f"the simulation took longer than {timeout:g} s") from None
+                    future = asyncio.wrap_future(self._executor().submit(target, *args))
+                    return await self._wait(future, timeout, gone)
                 except BrokenProcessPool:
                     log.warning("simulation worker died (attempt %d); starting a new one",
                                 attempt)
@@ -124,6 +140,24 @@ class SimulationRunner:
             raise AssertionError("unreachable")
         finally:
             self._turn.release()
+
+    async def _wait(self, future: asyncio.Future, timeout: float, gone) -> dict[str, Any]:
+        loop = asyncio.get_running_loop()
+        deadline = loop.time() + timeout  # from the start of the run, not of the wait
+        left_at = None
+        while True:
+            done, _ = await asyncio.wait({future}, timeout=_POLL_S)
+            if done:
+                return future.result()
+            now = loop.time()
+            if now >= deadline:
+                self._restart()  # only this request's run is in the worker
+                raise SimulationTimeout(f"the simulation took longer than {timeout:g} s")
+            if left_at is None and gone is not None and await gone():
+                left_at = now
+            if left_at is not None and now - left_at >= _GRACE_S:
+                self._restart()
+                raise ClientGone
 
     def _restart(self) -> None:
         """End the worker that is stuck in a long run; the next request starts a new one."""

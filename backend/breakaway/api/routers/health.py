@@ -1,5 +1,7 @@
 """GET /api/health."""
 
+import os
+
 from fastapi import APIRouter
 
 from ... import __version__
@@ -10,4 +12,4 @@ router = APIRouter(prefix="/api", tags=["health"])
 
 @router.get("/health", response_model=Health)
 def health() -> Health:
-    return Health(status="ok", version=__version__)
+    return Health(status="ok", version=__version__, worker=os.getpid())

@@ -1,0 +1,186 @@
+"""Fits in a bounded pool of worker processes, off the server's process.
+
+A fit holds the CPU (and, in its compiled parts, the GIL) for seconds to minutes: in the
+server's own threads it starved the explorer's requests. Here each of ``workers`` slots
+is one worker process; ``queue`` more fits may wait for a slot; a fit beyond that is
+refused (429) before its upload is read. A fit's time limit starts when it starts
+running, not while it waits. A cancel (``DELETE``, or the client of ``POST /api/fit``
+going away) is seen within a quarter second: the fit stops at its next progress
+checkpoint, and a fit still running half a second later has its worker process ended,
+so the CPU is free within a second either way.
+
+Jobs, their progress and their results live in the :class:`~.jobstore.JobStore`, which
+the worker processes write and every server process reads.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import logging
+import multiprocessing
+import os
+import time
+from concurrent.futures import ProcessPoolExecutor
+from concurrent.futures.process import BrokenProcessPool
+from pathlib import Path
+from typing import Awaitable, Callable
+
+from ..identify import DataError, Dataset, FitError, diagnose, report
+from ..identify.panel import residuals_csv, series
+from .jobstore import JobStore
+from .simulation import _exit_with_parent
+
+log = logging.getLogger("breakaway.api")
+
+#: Seconds between looks at a running fit's cancel flag and client.
+POLL_S = 0.25
+#: Seconds a cancelled fit gets to stop at a checkpoint before its process is ended.
+GRACE_S = 0.5
+#: Seconds between progress rows a worker writes (a cancel is read with each).
+PROGRESS_EVERY_S = 0.2
+
+
+class Cancelled(Exception):
+    """Raised inside a fit's progress callback once its job is cancelled."""
+
+
+def run_fit(db_path: str, job_id: str, data: Dataset) -> None:
+    """Worker entry point: diagnose ``data`` and write the outcome into the store."""
+    store = JobStore(Path(db_path))
+    last = 0.0
+
+    def progress(fraction: float, message: str) -> None:
+        nonlocal last
+        now = time.monotonic()
+        if now - last < PROGRESS_EVERY_S:
+            return
+        last = now
+        if store.progress(job_id, fraction, message):
+            raise Cancelled
+
+    try:
+        last = -PROGRESS_EVERY_S
+        progress(0.0, "starting")
+        diagnosis = diagnose(data, progress)
+        store.finish(job_id, "done", report=report(diagnosis), series=series(diagnosis),
+                     residuals=residuals_csv(diagnosis))
+    except Cancelled:
+        store.finish(job_id, "cancelled")
+    except (DataError, FitError) as err:
+        store.finish(job_id, "error", error=str(err))
+    except Exception:  # a job ends in a state the page can show, without internals
+        log.exception("fit %s failed", job_id)
+        store.finish(job_id, "error", error="the fit failed on these data; the server log "
+                                            "has the details")
+
+
+class _Slot:
+    """One worker process (started on first use, ended to stop a fit at once)."""
+
+    def __init__(self) -> None:
+        self._pool: ProcessPoolExecutor | None = None
+
+    def submit(self, *args):
+        if self._pool is None:
+            self._pool = ProcessPoolExecutor(
+                max_workers=1, mp_context=multiprocessing.get_context("spawn"),
+                initializer=_exit_with_parent, initargs=(os.getpid(),))
+        return self._pool.submit(*args)
+
+    def kill(self) -> None:
+        pool, self._pool = self._pool, None
+        if pool is None:
+            return
+        processes = list((getattr(pool, "_processes", None) or {}).values())
+        for process in processes:
+            process.kill()
+        pool.shutdown(wait=False, cancel_futures=True)
+        for process in processes:
+            process.join(timeout=5)
+
+
+class FitWorkers:
+    """``workers`` fit processes and a waiting room of ``queue``, over one job store."""
+
+    def __init__(self, store: JobStore, workers: int = 2, queue: int = 2,
+                 timeout_s: float = 600.0) -> None:
+        self.store = store
+        self.capacity = workers + queue
+        self.timeout_s = timeout_s
+        self._slots = [_Slot() for _ in range(workers)]
+        self._free: asyncio.Queue[_Slot] | None = None
+        self._tasks: set[asyncio.Task] = set()
+
+    def full(self) -> bool:
+        """Whether this server process already has as many fits as it takes."""
+        return self.store.active(owner=os.getpid()) >= self.capacity
+
+    def create(self, source: str) -> str | None:
+        """A queued job, or None when the pool and its queue are full."""
+        return self.store.create(source, self.capacity)
+
+    def start(self, job_id: str, data: Dataset) -> None:
+        """Run the job in the background (``POST /api/fit/jobs``)."""
+        task = asyncio.get_running_loop().create_task(self.run(job_id, data))
+        self._tasks.add(task)
+        task.add_done_callback(self._tasks.discard)
+
+    async def run(self, job_id: str, data: Dataset,
+                  gone: Callable[[], Awaitable[bool]] | None = None) -> None:
+        """Run the job in a free slot and return when it has ended (done, error or
+        cancelled). ``gone``: whether the client that waits for it has left."""
+        if self._free is None:
+            self._free = asyncio.Queue()
+            for slot in self._slots:
+                self._free.put_nowait(slot)
+        slot = await self._free.get()
+        try:
+            await self._watch(slot, job_id, data, gone)
+        finally:
+            self._free.put_nowait(slot)
+
+    async def _watch(self, slot: _Slot, job_id: str, data: Dataset, gone) -> None:
+        store = self.store
+        if store.cancel_requested(job_id) or (gone and await gone()):
+            store.finish(job_id, "cancelled")
+            return
+        loop = asyncio.get_running_loop()
+        started = loop.time()  # the time limit counts from here, not from the queue
+        future = asyncio.wrap_future(slot.submit(run_fit, str(store.path), job_id, data))
+        # a fit whose process was ended still resolves its future (broken pool): read it
+        future.add_done_callback(lambda f: f.cancelled() or f.exception())
+        del data  # the worker has its copy; the server keeps none
+        stop_at = None
+        while True:
+            done, _ = await asyncio.wait({future}, timeout=POLL_S)
+            if done:
+                try:
+                    future.result()
+                except BrokenProcessPool:
+                    slot.kill()
+                    if stop_at is None:
+                        log.warning("fit worker died during job %s", job_id)
+                        store.finish(job_id, "error", error="the fit's worker process died "
+                                                            "(out of memory?)")
+                    else:
+                        store.finish(job_id, "cancelled")
+                return
+            now = loop.time()
+            if stop_at is None and (store.cancel_requested(job_id) or (gone and await gone())):
+                store.request_cancel(job_id)
+                stop_at = now + GRACE_S
+            if stop_at is not None and now >= stop_at:
+                slot.kill()  # did not reach a checkpoint in time: end its process
+                store.finish(job_id, "cancelled")
+                return
+            if now - started > self.timeout_s:
+                slot.kill()
+                store.finish(job_id, "error", error=f"the fit took longer than "
+                                                    f"{self.timeout_s:g} s and was stopped")
+                return
+
+    def shutdown(self) -> None:
+        for task in self._tasks:
+            task.cancel()
+        for slot in self._slots:
+            slot.kill()
