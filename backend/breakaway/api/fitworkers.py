@@ -74,6 +74,17 @@ def run_fit(db_path: str, job_id: str, data: Dataset) -> None:
                                             "has the details")
 
 
+#: Scheduling niceness of the fit processes: a fit is batch work, and the explorer's
+#: requests (in the server process) and the ramp simulations come first when the CPU
+#: is short (benchmarks/bench_lecture.py).
+FIT_NICENESS = 10
+
+
+def _start_fit_worker(parent: int) -> None:
+    os.nice(FIT_NICENESS)
+    _exit_with_parent(parent)
+
+
 class _Slot:
     """One worker process (started on first use, ended to stop a fit at once)."""
 
@@ -84,7 +95,7 @@ class _Slot:
         if self._pool is None:
             self._pool = ProcessPoolExecutor(
                 max_workers=1, mp_context=multiprocessing.get_context("spawn"),
-                initializer=_exit_with_parent, initargs=(os.getpid(),))
+                initializer=_start_fit_worker, initargs=(os.getpid(),))
         return self._pool.submit(*args)
 
     def kill(self) -> None:
