@@ -19,7 +19,7 @@ from typing import Any
 
 import numpy as np
 import orjson
-from fastapi.responses import Response
+from fastapi.responses import JSONResponse
 
 from ..settings import get_settings
 
@@ -83,10 +83,9 @@ def dumps_frame(content: Any, digits: int | None = None) -> bytes:
                         option=_OPTIONS)
 
 
-class FrameResponse(Response):
-    """A JSON response for numpy payloads (see :func:`dumps_frame`)."""
-
-    media_type = "application/json"
+class FrameResponse(JSONResponse):
+    """A JSON response for numpy payloads (see :func:`dumps_frame`); a JSONResponse, so
+    the OpenAPI document describes it with the route's response model."""
 
     def render(self, content: Any) -> bytes:
         return dumps_frame(content)

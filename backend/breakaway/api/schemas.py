@@ -60,10 +60,25 @@ def _check_magnitude(value: float | None) -> float | None:
     return value
 
 
+def _check_at_most(value: float | None) -> float | None:
+    high = MAGNITUDE[1]
+    if value is not None and abs(value) > high:
+        raise ValueError(f"must be at most {high:g}, got {value:g}")
+    return value
+
+
+_LOW, _HIGH = MAGNITUDE
 Magnitude = AfterValidator(_check_magnitude)
-Positive = Annotated[float, Field(gt=0), Magnitude]
-NonNegative = Annotated[float, Field(ge=0), Magnitude]
-Delta = Annotated[float, AfterValidator(_check_delta), Magnitude]
+# the bounds go into the OpenAPI schema too (minimum/maximum), so a client that follows
+# the schema is never refused for them; a tiny non-negative coefficient (σ = 1e-310) is
+# harmless and taken as it is
+Positive = Annotated[float, Field(gt=0, json_schema_extra={"minimum": _LOW, "maximum": _HIGH}),
+                     Magnitude]
+NonNegative = Annotated[float, Field(ge=0, json_schema_extra={"maximum": _HIGH}),
+                        AfterValidator(_check_at_most)]
+Delta = Annotated[float, AfterValidator(_check_delta), Magnitude, Field(json_schema_extra={
+    "anyOf": [{"minimum": MIN_ABS_DELTA, "maximum": _HIGH},
+              {"minimum": -_HIGH, "maximum": -MIN_ABS_DELTA}]})]
 GridSize = Annotated[int, Field(ge=10), AfterValidator(_cap_grid)]
 Rate = Positive
 Rates = Annotated[list[Rate], Field(min_length=1), AfterValidator(_cap_rates)]

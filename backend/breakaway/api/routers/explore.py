@@ -12,8 +12,10 @@ from ..schemas import ExploreRequest, ExploreResponse
 router = APIRouter(prefix="/api", tags=["explore"])
 
 
-@router.post("/explore", response_class=FrameResponse,
-             responses={200: {"model": ExploreResponse}})
+# the schema documents ExploreResponse; the frame goes out as FrameResponse (numpy
+# arrays straight to JSON), which FastAPI sends as it is
+@router.post("/explore", response_model=ExploreResponse, response_class=FrameResponse,
+             responses={413: {"description": "the JSON body is over its size limit"}})
 async def explore(request: ExploreRequest) -> FrameResponse:
     """Stribeck curve, hysteresis loop, phase family and break-away curves for one
     parameter set. ``async`` on purpose: the frame is ~1 ms of numpy, cheaper to run
