@@ -103,3 +103,46 @@ def test_several_files_give_one_summary_row_each(tmp_path, capsys):
     table = json.load(open(f"{prefix}.json", encoding="utf-8"))
     assert [t["effects"] for t in table[:2]] == ["viscous", "dwell"]
     assert table[0]["kind"] == "steady" and table[1]["rows"] == 120
+
+
+def test_a_dask_cluster_gives_the_same_table_as_local_processes(tmp_path, capsys):
+    from dask.distributed import LocalCluster
+
+    paths = []
+    for name, (kind, effects) in {"a": ("steady", ("viscous",)),
+                                  "b": ("breakaway", ("dwell",))}.items():
+        data, _ = make_dataset(kind, effects, seed=4)
+        path = tmp_path / f"{name}.csv"
+        path.write_text(to_csv(data))
+        paths.append(str(path))
+    paths.append(str(tmp_path / "missing.csv"))
+    assert main(["fit", *paths, "--jobs", "2", "--summary", str(tmp_path / "local")]) == 2
+    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                      dashboard_address=None) as cluster:
+        code = main(["fit", *paths, "--dask", cluster.scheduler_address,
+                     "--summary", str(tmp_path / "dask")])
+    assert code == 2
+    assert "missing.csv" in capsys.readouterr().err
+    local = json.load(open(tmp_path / "local.json", encoding="utf-8"))
+    remote = json.load(open(tmp_path / "dask.json", encoding="utf-8"))
+    assert [row["file"] for row in remote] == paths
+    assert [row["effects"] for row in remote] == ["viscous", "dwell", None]
+    for mine, theirs in zip(local[:2], remote[:2]):
+        assert theirs["error_after"] == pytest.approx(mine["error_after"], rel=1e-9)
+        assert theirs["kind"] == mine["kind"] and theirs["rows"] == mine["rows"]
+    assert remote[2]["error"].startswith("cannot read")
+
+
+def test_dask_without_distributed_says_how_to_install(monkeypatch, tmp_path):
+    import builtins
+
+    real_import = builtins.__import__
+
+    def no_dask(name, *args, **kwargs):
+        if name.startswith("dask"):
+            raise ImportError(name)
+        return real_import(name, *args, **kwargs)
+
+    monkeypatch.setattr(builtins, "__import__", no_dask)
+    with pytest.raises(SystemExit, match=r"pip install 'breakaway\[dask\]'"):
+        main(["fit", str(tmp_path / "a.csv"), "--dask", "tcp://127.0.0.1:1"])

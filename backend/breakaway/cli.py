@@ -27,7 +27,7 @@ def _fit(args: argparse.Namespace) -> int:
     from .identify import DataError, FitError, identify, read_csv
     from .identify.text import format_report
 
-    if len(args.files) > 1 or args.summary:
+    if len(args.files) > 1 or args.summary or args.dask:
         return _fit_many(args)
     path = args.files[0]
     try:
@@ -49,14 +49,17 @@ SUMMARY_COLUMNS = ("file", "kind", "rows", "effects", "error_before", "error_aft
                    "warnings", "seconds", "error")
 
 
-def summary_row(path: str, kind: str | None) -> dict:
-    """Identify one file (in a worker process): its row of the batch summary."""
-    from .identify import DataError, FitError, identify, read_csv
+def summary_row(path: str, kind: str | None, content: bytes | None = None) -> dict:
+    """Identify one file (in a worker process, local or on a Dask cluster): its row of
+    the batch summary. ``content``: the file's bytes, read where the command runs, for
+    workers that do not share its file system."""
+    from .identify import DataError, FitError, identify, parse_csv, read_csv
 
     row = dict.fromkeys(SUMMARY_COLUMNS, None)
     row["file"] = path
     try:
-        report = identify(read_csv(path, kind=kind))
+        data = read_csv(path, kind=kind) if content is None else parse_csv(content, kind)
+        report = identify(data)
     except (DataError, FitError) as err:
         row["error"] = str(err)[:500]
         return row
@@ -78,7 +81,9 @@ def _fit_many(args: argparse.Namespace) -> int:
     from concurrent.futures import ProcessPoolExecutor
 
     jobs = max(1, args.jobs)
-    if jobs == 1:
+    if args.dask:
+        rows = _rows_on_dask(args.dask, args.files, args.kind)
+    elif jobs == 1:
         rows = [summary_row(path, args.kind) for path in args.files]
     else:
         with ProcessPoolExecutor(max_workers=jobs) as pool:
@@ -101,6 +106,26 @@ def _fit_many(args: argparse.Namespace) -> int:
         if row["error"]:
             print(f"breakaway fit: {row['file']}: {row['error']}", file=sys.stderr)
     return 2 if failed else 0
+
+
+def _rows_on_dask(address: str, paths: list[str], kind: str | None) -> list[dict]:
+    """The summary rows computed on the Dask cluster at ``address``; each file's bytes
+    travel with its task, so the workers need breakaway installed, not the files."""
+    try:
+        from dask.distributed import Client
+    except ImportError:
+        raise SystemExit("breakaway fit: --dask needs dask.distributed; install it with "
+                         "pip install 'breakaway[dask]'") from None
+    contents = []
+    for path in paths:
+        try:
+            with open(path, "rb") as fh:
+                contents.append(fh.read())
+        except OSError:
+            contents.append(None)  # read_csv on the worker names the problem
+    with Client(address) as client:
+        futures = client.map(summary_row, paths, [kind] * len(paths), contents, pure=False)
+        return client.gather(futures)
 
 
 #: Fits of at least this many rows print a progress line on stderr.
@@ -144,6 +169,9 @@ def build_parser() -> argparse.ArgumentParser:
                      help="CSV file(s) (MODEL.md §6); several give one summary row each")
     fit.add_argument("--jobs", type=int, default=1,
                      help="local worker processes for several files (default 1)")
+    fit.add_argument("--dask", metavar="ADDRESS", default=None,
+                     help="run the files on an existing Dask cluster (tcp://host:8786) "
+                          "instead of local processes; needs breakaway[dask]")
     fit.add_argument("--summary", metavar="PREFIX", default=None,
                      help="write the summary table to PREFIX.csv and PREFIX.json")
     fit.add_argument("--kind", choices=("timeseries", "steady", "breakaway"), default=None,
