@@ -8,7 +8,6 @@ from pathlib import Path
 from pydantic_settings import BaseSettings, SettingsConfigDict
 
 _REPO_FRONTEND = Path(__file__).resolve().parents[2] / "frontend"
-_REPO_DATA = Path(__file__).resolve().parents[2] / "data"
 
 
 class Settings(BaseSettings):
@@ -33,9 +32,10 @@ class Settings(BaseSettings):
     #: explorer: its wall-clock budget per request [s] and step budget per rate.
     simulate_timeout_s: float = 20.0
     simulate_max_steps: int = 1_000_000
-    #: Where the server keeps its state: the fit jobs' SQLite store (``jobs.sqlite``).
-    #: Several server processes on one data directory share their jobs.
-    data_dir: Path = _REPO_DATA
+    #: Where the server keeps its state: the fit jobs' SQLite store (``jobs.sqlite``);
+    #: ``data`` under the directory the server starts in by default. Several server
+    #: processes on one data directory share their jobs.
+    data_dir: Path = Path("data")
     #: Fit worker processes per server process, and fits that may wait for one; a fit
     #: beyond both is refused with 429 before its upload is read.
     fit_workers: int = 2
