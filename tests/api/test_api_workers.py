@@ -212,8 +212,9 @@ class Server:
         return self.request("POST", path, body,
                             {"Content-Type": f"multipart/form-data; boundary={boundary}"})
 
-    def rss_mb(self) -> float:
-        pids = [self.process.pid] + children(self.process.pid)
+    def rss_mb(self, workers: bool = False) -> float:
+        """Resident memory of the server process, or of its worker processes [MB]."""
+        pids = children(self.process.pid) if workers else [self.process.pid]
         total = 0
         for pid in pids:
             for line in Path(f"/proc/{pid}/status").read_text().splitlines():
@@ -315,7 +316,7 @@ def test_two_server_processes_share_the_jobs(servers):
     wait_status(lambda i: server.get(f"/api/fit/jobs/{i}"), job_id, {"cancelled"}, 2.0)
 
 
-def test_memory_returns_after_a_burst_of_oversize_uploads(servers):
+def test_memory_returns_after_oversize_uploads_and_finished_fits(servers):
     server = servers()
     server.get("/api/health")
     baseline = server.rss_mb()
@@ -359,3 +360,14 @@ def test_memory_returns_after_a_burst_of_oversize_uploads(servers):
     assert answers == [413] * 6
     time.sleep(0.5)
     assert server.rss_mb() - baseline < 150
+    # and after finished fits: their results are in the store, not in the server; the
+    # fit processes, once started, stay as large as their first fit left them
+    medium = to_csv(make_dataset("timeseries", ("viscous",), seed=5, n=20_000)[0]).encode()
+    for _ in range(2):  # one fit in each of the two fit processes
+        assert server.post_file("/api/fit", medium, "medium.csv")[0] == 200
+    warm = server.rss_mb(workers=True)
+    for _ in range(4):
+        assert server.post_file("/api/fit", medium, "medium.csv")[0] == 200
+    time.sleep(0.5)
+    assert server.rss_mb() - baseline < 150
+    assert server.rss_mb(workers=True) - warm < 150
