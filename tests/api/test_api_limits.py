@@ -113,3 +113,19 @@ def test_csv_errors_echo_a_bounded_part_of_the_input(client):
     assert response.status_code == 422
     assert len(response.content) <= 1024
     assert response.json()["detail"][0]["line"] == 3
+
+
+def test_a_method_an_api_path_does_not_take_is_405_with_allow(client):
+    response = client.put("/api/explore", json={})
+    assert response.status_code == 405
+    assert response.headers["allow"] == "POST"
+    assert response.json()["detail"][0]["type"] == "method_not_allowed"
+    jobs = client.post("/api/fit/jobs/abc")
+    assert jobs.status_code == 405 and jobs.headers["allow"] == "DELETE, GET, HEAD"
+
+
+def test_an_unknown_api_path_is_404_not_the_page(client):
+    response = client.get("/api/nothing/here")
+    assert response.status_code == 404
+    assert response.headers["content-type"] == "application/json"
+    assert response.json()["detail"][0]["type"] == "not_found"

@@ -12,7 +12,6 @@ magnitudes, |δ| ≥ 0.05, enums, sizes) is in the document, so the negative che
 
 from __future__ import annotations
 
-import pytest
 import schemathesis
 from hypothesis import HealthCheck, settings
 from schemathesis.specs.openapi.checks import positive_data_acceptance
