@@ -83,11 +83,12 @@ function forceTitle(kind) {
 function layout(revision, xTitle, yTitle, extra = {}) {
   return {
     uirevision: revision, // a new fit resets the zoom; redraws of the same fit keep it
-    margin: { l: 60, r: 12, t: 8, b: 44 },
+    margin: { l: 60, r: 12, t: 8, b: 78 },
     font: { size: 11 },
     hovermode: "closest",
     showlegend: true,
-    legend: { x: 1, xanchor: "right", y: 1, bgcolor: "rgba(255,255,255,0.8)" },
+    // below the axes: the toolbar appears at the top right, and the data fill the plot
+    legend: { orientation: "h", x: 0, y: -0.2, yanchor: "top" },
     xaxis: { title: { text: xTitle, standoff: 4 }, zeroline: false, exponentformat: "power" },
     yaxis: { title: { text: yTitle, standoff: 4 }, zeroline: true, exponentformat: "power" },
     ...extra,

@@ -50,7 +50,7 @@ export function rampFigure(ramp, state, cursor = null) {
     margin: { l: 58, r: 58, t: 8, b: 42 },
     font: { size: 11 },
     hovermode: "closest",
-    legend: { orientation: "h", x: 0, y: -0.22, yanchor: "top", font: { size: 10 } },
+    legend: { orientation: "h", x: 0, y: -0.22, yanchor: "top" },
     xaxis: { title: { text: "t [s]", standoff: 4 } },
     yaxis: { title: { text: "u, F [N]", standoff: 4 } },
     yaxis2: { title: { text: "ẋ [m/s]", standoff: 4 }, overlaying: "y", side: "right",

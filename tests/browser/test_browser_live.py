@@ -149,6 +149,17 @@ def test_layout_at_1280_by_800(explorer):
     assert layout["controls"]["right"] <= min(plot["left"] for plot in layout["plots"])
     assert ramp["top"] >= max(plot["top"] + plot["height"] for plot in four)
     assert ramp["width"] >= 1.9 * four[0]["width"]
+    # what comes below the plots stays clear of the sticky controls, scrolled to
+    for selector in ("#glossary summary", "#data-panel"):
+        element = explorer.page.locator(selector)
+        element.scroll_into_view_if_needed()
+        box = element.bounding_box()
+        controls = explorer.page.locator("#controls").bounding_box()
+        assert box["x"] >= controls["x"] + controls["width"], selector
+        assert explorer.page.evaluate(
+            "(s) => { const r = document.querySelector(s).getBoundingClientRect();"
+            " return document.elementFromPoint(r.left + 5, r.top + r.height / 2)"
+            ".closest(s) !== null; }", selector)
 
 
 def test_phone_width(explorer):
