@@ -47,19 +47,18 @@ class Cancelled(Exception):
 def run_fit(db_path: str, job_id: str, data: Dataset) -> None:
     """Worker entry point: diagnose ``data`` and write the outcome into the store."""
     store = JobStore(Path(db_path))
-    last = 0.0
+    last = None  # when progress was last written
 
     def progress(fraction: float, message: str) -> None:
         nonlocal last
         now = time.monotonic()
-        if now - last < PROGRESS_EVERY_S:
+        if last is not None and now - last < PROGRESS_EVERY_S:
             return
         last = now
         if store.progress(job_id, fraction, message):
             raise Cancelled
 
     try:
-        last = -PROGRESS_EVERY_S
         progress(0.0, "starting")
         diagnosis = diagnose(data, progress)
         store.finish(job_id, "done", report=report(diagnosis), series=series(diagnosis),

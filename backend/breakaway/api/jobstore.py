@@ -149,15 +149,17 @@ class JobStore:
                  residuals.encode() if residuals is not None else None]
         size = sum(len(b) for b in blobs if b is not None)
         message = {"done": "done", "cancelled": "cancelled"}.get(status, "failed")
-        query = ("UPDATE jobs SET status = ?, progress = ?, message = ?, error = ?, report = ?, "
-                 "series = ?, residuals = ?, size = ?, updated = ? WHERE id = ?")
+        # a finished fit shows 100 %; a stopped one keeps the progress it had
+        query = ("UPDATE jobs SET status = ?, progress = COALESCE(?, progress), message = ?, "
+                 "error = ?, report = ?, series = ?, residuals = ?, size = ?, updated = ? "
+                 "WHERE id = ?")
         args = (status, 1.0 if status == "done" else None, message, error, *blobs, size,
                 time.time(), job_id)
         if db is not None:
-            db.execute(query.replace("progress = ?", "progress = COALESCE(?, progress)"), args)
+            db.execute(query, args)
             return
         with closing(self._connect()) as own:
-            own.execute(query.replace("progress = ?", "progress = COALESCE(?, progress)"), args)
+            own.execute(query, args)
 
     # -- bounds ------------------------------------------------------------------------
 
