@@ -32,6 +32,8 @@ class Settings(BaseSettings):
     #: explorer: its wall-clock budget per request [s] and step budget per rate.
     simulate_timeout_s: float = 20.0
     simulate_max_steps: int = 1_000_000
+    #: Simulation requests that may wait for the worker; more are answered 503 at once.
+    simulate_queue: int = 16
     #: Where the server keeps its state: the fit jobs' SQLite store (``jobs.sqlite``);
     #: ``data`` under the directory the server starts in by default. Several server
     #: processes on one data directory share their jobs.

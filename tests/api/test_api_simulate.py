@@ -162,6 +162,18 @@ def test_one_run_at_a_time_and_the_budget_counts_from_the_start_of_the_run():
         # a run over its own budget is ended
         with pytest.raises(SimulationTimeout, match="longer than 0.5 s"):
             await runner.run(0.5, 3.0, target=time.sleep)
+        # a full queue refuses at once: two wait behind a running one, the third is turned away
+        runner._queue = 2
+        holder = asyncio.create_task(runner.run(60.0, 1.0, target=time.sleep))
+        await asyncio.sleep(0.05)
+        waiters = [asyncio.create_task(runner.run(60.0, 0.01, target=time.sleep))
+                   for _ in range(2)]
+        await asyncio.sleep(0.05)
+        asked = loop.time()
+        with pytest.raises(SimulatorBusy, match="2 simulations are already waiting"):
+            await runner.run(60.0, 0.01, target=time.sleep)
+        assert loop.time() - asked < 0.1
+        await asyncio.gather(holder, *waiters)
         return result
 
     try:

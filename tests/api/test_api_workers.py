@@ -371,3 +371,25 @@ def test_memory_returns_after_oversize_uploads_and_finished_fits(servers):
     time.sleep(0.5)
     assert server.rss_mb() - baseline < 150
     assert server.rss_mb(workers=True) - warm < 150
+
+
+def test_a_simulation_its_client_left_is_ended(servers):
+    server = servers()
+    # a damper fitted in kN under the note's N/s rates: none breaks away, each rate
+    # takes its whole step budget (about 0.7 s here), 40 rates about half a minute
+    rates = [round(0.01 * 1.1 ** i, 6) for i in range(40)]
+    body = orjson.dumps({"k": rates, "Fc": 15430, "Fs": 16320, "V": 1.704e-4,
+                         "delta": 7.3, "s": 53.6, "max_steps": 1_000_000})
+    head = (f"POST /api/simulate HTTP/1.1\r\nHost: 127.0.0.1:{server.port}\r\n"
+            f"Content-Type: application/json\r\nContent-Length: {len(body)}\r\n\r\n").encode()
+    workers = children(server.process.pid)
+    with socket.create_connection(("127.0.0.1", server.port)) as sock:
+        sock.sendall(head + body)
+        time.sleep(1.5)
+        assert cpu_seconds(workers + children(server.process.pid)) > 0.5  # it was running
+    time.sleep(1.0)  # the server notices within a second
+    assert_idle([server.process.pid] + children(server.process.pid))
+    # and the next request is served by a fresh worker
+    status, answer = server.request("POST", "/api/simulate", orjson.dumps({"k": [1.0]}),
+                                    {"Content-Type": "application/json"})
+    assert status == 200 and orjson.loads(answer)["u_ba"][0] is not None

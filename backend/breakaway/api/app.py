@@ -50,7 +50,7 @@ def create_app() -> FastAPI:
                   docs_url=None, redoc_url=None,
                   description="Ruderman's break-away friction model: explorer API "
                               "(MODEL.md §9). Interactive docs at /docs.")
-    app.state.simulations = SimulationRunner()
+    app.state.simulations = SimulationRunner(queue=settings.simulate_queue)
     store = JobStore(settings.data_dir / "jobs.sqlite", max_bytes=settings.jobs_max_bytes,
                      max_age_s=settings.jobs_max_age_s)
     app.state.fit_workers = FitWorkers(store, workers=settings.fit_workers,

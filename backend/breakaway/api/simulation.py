@@ -90,12 +90,15 @@ def _warm_up() -> bool:
 
 
 class SimulationRunner:
-    """One worker process, started lazily (or at start-up), replaced after a timeout."""
+    """One worker process, started lazily (or at start-up), replaced after a timeout;
+    at most ``queue`` requests wait for it (more are refused at once, 503)."""
 
-    def __init__(self) -> None:
+    def __init__(self, queue: int = 16) -> None:
         self._pool: ProcessPoolExecutor | None = None
         self._lock = threading.Lock()  # guards _pool
         self._turn: asyncio.Lock | None = None  # one run at a time (made on the loop)
+        self._queue = queue
+        self._waiting = 0
 
     def _executor(self) -> ProcessPoolExecutor:
         with self._lock:
@@ -121,11 +124,16 @@ class SimulationRunner:
         that died is replaced once."""
         if self._turn is None:
             self._turn = asyncio.Lock()
+        if self._turn.locked() and self._waiting >= self._queue:
+            raise SimulatorBusy(f"{self._waiting} simulations are already waiting")
+        self._waiting += 1
         try:
             await asyncio.wait_for(self._turn.acquire(), timeout if wait is None else wait)
         except asyncio.TimeoutError:
             raise SimulatorBusy(f"the simulator stayed busy for "
                                 f"{timeout if wait is None else wait:g} s") from None
+        finally:
+            self._waiting -= 1
         try:
             for attempt in (1, 2):
                 try:
