@@ -52,6 +52,12 @@ class Settings(BaseSettings):
     #: separated; "*" answers any. Localhost by default: a page elsewhere cannot reach
     #: the server through a rebound DNS name. Set the public name behind a proxy.
     allowed_hosts: str = "localhost,127.0.0.1,[::1]"
+    #: Origins (scheme://host[:port]) whose pages may call the API from the browser,
+    #: comma separated; empty (the default) keeps CORS off and refuses their requests.
+    cors_origins: str = ""
+
+    def cors_origin_list(self) -> list[str]:
+        return [o.strip() for o in self.cors_origins.split(",") if o.strip()]
 
     def host_allowed(self, host: str) -> bool:
         names = [h.strip().lower() for h in self.allowed_hosts.split(",") if h.strip()]

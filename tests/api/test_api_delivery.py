@@ -96,3 +96,34 @@ def test_cross_site_posts_are_refused_and_same_site_ones_pass(client):
     plain = client.post("/api/explore", json={})  # scripts send no Origin
     assert plain.status_code == 200
     assert client.get("/api/health", headers={"Origin": "https://evil.example"}).status_code == 200
+
+
+def test_a_null_origin_is_refused_like_another_site(client):
+    # a sandboxed frame of any site sends "Origin: null"
+    response = client.post("/api/explore", json={}, headers={"Origin": "null"})
+    assert response.status_code == 403
+    assert response.json()["detail"][0]["loc"] == ["header", "origin"]
+
+
+def test_cors_is_off_unless_configured(client, monkeypatch):
+    from breakaway.settings import get_settings
+
+    preflight = {"Origin": "https://course.example", "Access-Control-Request-Method": "POST"}
+    off = client.options("/api/explore", headers=preflight)
+    assert "access-control-allow-origin" not in off.headers
+    assert client.post("/api/explore", json={},
+                       headers={"Origin": "https://course.example"}).status_code == 403
+    monkeypatch.setenv("BREAKAWAY_CORS_ORIGINS", "https://course.example")
+    get_settings.cache_clear()
+    try:
+        with TestClient(create_app()) as allowed:
+            on = allowed.options("/api/explore", headers=preflight)
+            assert on.headers["access-control-allow-origin"] == "https://course.example"
+            answer = allowed.post("/api/explore", json={},
+                                  headers={"Origin": "https://course.example"})
+            assert answer.status_code == 200
+            assert answer.headers["access-control-allow-origin"] == "https://course.example"
+            assert allowed.post("/api/explore", json={},
+                                headers={"Origin": "https://evil.example"}).status_code == 403
+    finally:
+        get_settings.cache_clear()

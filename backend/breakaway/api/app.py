@@ -7,6 +7,7 @@ from typing import AsyncIterator
 
 from fastapi import APIRouter, FastAPI
 from fastapi.exceptions import RequestValidationError
+from fastapi.middleware.cors import CORSMiddleware
 from fastapi.staticfiles import StaticFiles
 from starlette.exceptions import HTTPException as StarletteHTTPException
 
@@ -69,6 +70,10 @@ def create_app() -> FastAPI:
                        upload_limit=settings.max_upload_bytes)
     app.add_middleware(SecurityHeaders)
     app.add_middleware(CompressPages)
+    if settings.cors_origin_list():  # off unless configured
+        app.add_middleware(CORSMiddleware, allow_origins=settings.cors_origin_list(),
+                           allow_methods=["GET", "POST", "DELETE"], allow_headers=["Content-Type"],
+                           max_age=600)
     app.add_middleware(SameOrigin)
     if settings.frontend_dir.is_dir():
         app.mount("/", StaticFiles(directory=settings.frontend_dir, html=True), name="frontend")

@@ -181,8 +181,10 @@ class CompressPages:
 class SameOrigin:
     """Answers only to allowed Host names, and refuses state-changing requests (POST,
     DELETE, …) that a browser sends from another origin (its ``Origin`` header names
-    another host than the one asked): no other site can start fits or simulations
-    through a visitor's browser. CORS stays off."""
+    another host than the one asked, or is ``null``, as from a sandboxed frame of any
+    site): no other site can start fits or simulations through a visitor's browser.
+    Origins listed in ``BREAKAWAY_CORS_ORIGINS`` are let through (and get CORS headers
+    from the app); the list is empty by default: CORS off."""
 
     SAFE = frozenset({"GET", "HEAD", "OPTIONS"})
 
@@ -204,8 +206,9 @@ class SameOrigin:
                           f"{host[:100]!r}; set BREAKAWAY_ALLOWED_HOSTS")
             return
         origin = headers.get("origin")
-        if scope["method"] not in self.SAFE and origin and origin != "null" \
-                and urlsplit(origin).netloc.lower() != host.lower():
+        if scope["method"] not in self.SAFE and origin \
+                and urlsplit(origin).netloc.lower() != host.lower() \
+                and origin not in get_settings().cors_origin_list():
             await _refuse(send, 403, "origin", "requests from another site's pages are "
                           "refused (the Origin header names another host)")
             return
