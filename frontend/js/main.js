@@ -399,7 +399,10 @@ function showServerError(error) {
     return;
   }
   const box = $("server-error");
-  box.textContent = `The server could not compute this view: ${error.message}`;
+  // an answer from the server, or a failure to reach it or to draw what it sent
+  const what = error instanceof ApiError || error instanceof TypeError && /fetch/i.test(error.message)
+    ? "The server could not compute this view" : "The page could not draw this view";
+  box.textContent = `${what}: ${error.message}`;
   box.hidden = false;
 }
 

@@ -287,11 +287,28 @@ export function styled(figure, { present = false, dark = false } = {}) {
     const bottom = Math.max(60, (layout.margin?.b ?? 42) + 24);
     layout.margin = { ...(layout.margin ?? {}), l: 78, b: bottom, ...(layout.yaxis2 ? { r: 96 } : {}) };
   }
-  const data = present ? figure.data.map((trace) => ({
+  let data = present ? figure.data.map((trace) => ({
     ...trace,
     ...(trace.line ? { line: { ...trace.line, width: (trace.line.width ?? 1.5) * 1.7 } } : {}),
     ...(trace.marker && typeof trace.marker.size === "number"
       ? { marker: { ...trace.marker, size: trace.marker.size * 1.4 } } : {}),
   })) : figure.data;
+  if (dark) data = data.map(onDark);
   return { data, layout };
+}
+
+/** Black and dark grey ink (the simulation, reference lines) turned light on a dark
+ *  background, where they would vanish. */
+const DARK_INK = { "#111111": "#e4e7eb", "#111": "#e4e7eb", "#000": "#e4e7eb",
+  "#555555": "#a7afba", "#555": "#a7afba" };
+
+function onDark(trace) {
+  const out = { ...trace };
+  if (trace.line && DARK_INK[trace.line.color]) {
+    out.line = { ...trace.line, color: DARK_INK[trace.line.color] };
+  }
+  if (trace.marker && typeof trace.marker.color === "string" && DARK_INK[trace.marker.color]) {
+    out.marker = { ...trace.marker, color: DARK_INK[trace.marker.color] };
+  }
+  return out;
 }

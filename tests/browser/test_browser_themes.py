@@ -41,6 +41,11 @@ def test_dark_mode_follows_the_system(explorer):
     assert max(red, green, blue) < 60
     assert layout(explorer, "stribeck", "paper_bgcolor") == "rgba(0,0,0,0)"
     assert layout(explorer, "stribeck", "font.color") == "#e4e7eb"
+    # black ink (the simulated path) turns light, where black would vanish
+    explorer.page.evaluate("window.breakaway.rampReady()")
+    colors = explorer.page.evaluate(
+        "document.getElementById('plot-phase').data.map((t) => t.line && t.line.color)")
+    assert "#111" not in colors and "#e4e7eb" in colors
 
 
 def test_print_shows_the_plots_without_the_controls(explorer):
