@@ -8,9 +8,10 @@
    ``data-frame`` changes with ``data-ready="true"``), both read with ``performance.now()``
    in the page. The mass m moves only the simulations, so for m the end is the ramp
    experiment redrawn (``data-ramp-frame``). p50/p95 per slider, the default page (ramp
-   and simulation on), 1280×800. Against it, in the same run: the same presses with every
-   plot that changed drawn from scratch (``Plotly.purge`` + ``newPlot``) instead of
-   ``Plotly.react``.
+   and simulation on), 1280×800. Against it, in the same run: the same presses without
+   the frame of the next arrow step asked for ahead (``window.breakaway.prefetch(false)``:
+   every press waits for its request), and with every plot that changed drawn from
+   scratch (``Plotly.purge`` + ``newPlot``) instead of ``Plotly.react``.
 2. load: first load on an emulated 20 Mbit/s link with 40 ms latency (Chrome DevTools
    network emulation, cache disabled), navigation start to four drawn plots: the page as
    served (Plotly's partial bundle, gzip) against the full Plotly bundle (4.8 MB) served
@@ -153,23 +154,32 @@ def bench_keys(presses: int) -> None:
     with Server() as server, sync_playwright() as playwright:
         browser = launch(playwright)
         results = {}
-        for label, new_plot in (("the page", False), ("newPlot", True)):
+        hits = 0
+        for label, setup in (("the page", None), ("nothing ahead", "window.breakaway.prefetch(false)"),
+                             ("newPlot", NEW_PLOT)):
             page = browser.new_page(viewport={"width": 1280, "height": 800})
             page.goto(f"{server.url}/")
             page.evaluate("window.breakaway.rampReady()")
             page.evaluate(PROBE)
-            if new_plot:
-                page.evaluate(NEW_PLOT)
+            if setup:
+                page.evaluate(setup)
             results[label] = {name: press_latencies(page, name, presses) for name in SLIDERS}
+            if label == "the page":
+                hits = page.evaluate("window.breakaway.prefetchHits()")
             page.close()
         browser.close()
-    print(f"   {'slider':8s} {'p50':>8s} {'p95':>8s}   {'newPlot: p50':>14s} {'p95':>8s}")
+    labels = list(results)
+    print(f"   {'slider':8s}" + "".join(f"   {label + ': p50':>20s} {'p95':>8s}" for label in labels))
     for name in SLIDERS:
-        ours, alt = results["the page"][name], results["newPlot"][name]
-        print(f"   {name:8s} {pct(ours, .5):6.1f} ms {pct(ours, .95):6.1f} ms   "
-              f"{pct(alt, .5):12.1f} ms {pct(alt, .95):6.1f} ms")
-    every = [v for name in SLIDERS if name != "m" for v in results["the page"][name]]
-    print(f"   all sliders but m: p50 {pct(every, .5):.1f} ms, p95 {pct(every, .95):.1f} ms")
+        print(f"   {name:8s}" + "".join(
+            f"   {pct(results[label][name], .5):17.1f} ms {pct(results[label][name], .95):5.1f} ms"
+            for label in labels))
+    for label in labels:
+        every = [v for name in SLIDERS if name != "m" for v in results[label][name]]
+        print(f"   all sliders but m, {label}: p50 {pct(every, .5):.1f} ms, "
+              f"p95 {pct(every, .95):.1f} ms")
+    print(f"   presses that found their frame asked for ahead: {hits} of "
+          f"{presses * (len(SLIDERS) - 1)} (m asks for no frame)")
 
 
 def first_load(browser, url: str, identity: bool) -> float:

@@ -54,12 +54,14 @@ export function deleteResource(url, keepalive = false) {
   return fetch(url, { method: "DELETE", keepalive }).catch(() => null);
 }
 
-export function postJSON(url, body, signal) {
+/** POST a JSON body; the JSON answer. `priority` "low" for requests made ahead of need. */
+export function postJSON(url, body, signal, priority = "auto") {
   return request(url, {
     method: "POST",
     headers: { "Content-Type": "application/json" },
     body: JSON.stringify(body),
     signal,
+    priority,
   });
 }
 

@@ -31,9 +31,30 @@ function untab(element) {
   for (const button of element.querySelectorAll(".modebar-btn")) button.tabIndex = -1;
 }
 
-/** Draw a figure as the page is shown (`styled` already applied when `shown`). */
+/**
+ * What Plotly would otherwise find out on every redraw, stated once: every axis is
+ * numeric (unless the figure says log), so Plotly does not scan each data array for
+ * dates and categories; tick labels may overflow the axis ends (the margins leave room),
+ * so it does not measure every label to hide the ones that would. Together about a
+ * fifth of a redraw (benchmarks/bench_page.py).
+ */
+export function forPlotly(layout) {
+  const out = { ...layout };
+  for (const key of Object.keys(layout)) {
+    if (/^[xy]axis\d*$/.test(key)) {
+      out[key] = { type: "linear", ticklabeloverflow: "allow", ...layout[key] };
+    }
+  }
+  return out;
+}
+
+/** Draw a figure as the page is shown (`styled` already applied when `shown`). The
+ *  config goes with the first drawing only: given to every `Plotly.react`, Plotly
+ *  compares it with the old one and reads the plot's size, a forced layout per plot. */
 export function drawFigure(element, figure, { config = {}, shown = false } = {}) {
   const { data, layout } = shown ? figure : styled(figure, pageStyle());
-  return window.Plotly.react(element, data, layout, { ...PLOT_CONFIG, ...config })
+  const first = !element._context;
+  return window.Plotly.react(element, data, forPlotly(layout),
+    first ? { ...PLOT_CONFIG, ...config } : undefined)
     .then(() => untab(element));
 }

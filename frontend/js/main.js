@@ -28,6 +28,10 @@ import {
 } from "./state.js";
 
 const SIM_DEBOUNCE_MS = 350;
+/** Arrow keys on a focused slider: one position up or down. */
+const KEY_STEP = { ArrowRight: 1, ArrowUp: 1, ArrowLeft: -1, ArrowDown: -1 };
+/** Frames asked for ahead of a key press, at most (the older ones are dropped). */
+const PREFETCH_KEEP = 2;
 const RAMP_DEBOUNCE_MS = 60;
 const PLAY_SECONDS = 4;
 /** The explorer's plots export through the page's own buttons (CSV, PNG). */
@@ -39,11 +43,16 @@ const app = {
   state: null,
   frame: null,
   frameKey: null, // the /api/explore body the frame answers
+  prefetch: new Map(), // /api/explore body → its answer, asked for ahead of the key press
+  prefetchOn: true,
+  prefetchHits: 0,
+  lastStep: null, // {name, step}: the last arrow key on a slider
   frames: 0,
   reacts: 0, // Plotly.react calls (plots whose figure did not change are left alone)
   version: 0,
   exploreController: null,
   busy: true,
+  commitPending: false, // a history entry waits for its frame to be drawn
   lastRedrawMs: null,
   sim: null, // {key, k, u_ba, F_ba, t_ba, stale}
   lugre: null, // {k, u_ba, F_ba}
@@ -78,7 +87,9 @@ function setBusy(busy) {
   plots.dataset.ready = busy ? "false" : "true";
   plots.dataset.frame = String(app.frames);
   plots.setAttribute("aria-busy", busy ? "true" : "false");
-  if (!busy) flush("ready");
+  if (busy) return;
+  if (app.commitPending) setTimeout(writeHistory);
+  else flush("ready");
 }
 
 function updateSimBusy() {
@@ -136,7 +147,7 @@ function refresh() {
   // a change the model's curves do not depend on (the mass m) needs no new frame
   const frameAsked = app.frame && key === app.frameKey
     ? Promise.resolve(app.frame)
-    : postJSON("/api/explore", body, controller.signal);
+    : frameFor(body, key, controller.signal);
   frameAsked
     .then(async (frame) => {
       if (version !== app.version) return;
@@ -152,6 +163,7 @@ function refresh() {
       scheduleSim();
       scheduleRamp();
       ensureLugre();
+      prefetchNextStep();
     })
     .catch((error) => {
       if (error.name === "AbortError" || version !== app.version) return;
@@ -160,6 +172,41 @@ function refresh() {
       setBusy(false);
       updateSimBusy();
     });
+}
+
+/** The frame for an explore body: the one asked for ahead of this key press when there
+ *  is one (a failed one is asked for again), else a new request. */
+function frameFor(body, key, signal) {
+  const early = app.prefetch.get(key);
+  app.prefetch.clear();
+  if (!early) return postJSON("/api/explore", body, signal);
+  app.prefetchHits += 1;
+  return early.catch(() => postJSON("/api/explore", body, signal));
+}
+
+/**
+ * A person stepping a slider with the arrow keys presses the same key again: ask for
+ * that next position's frame now, at low priority, so the key press finds it here and
+ * waits only for the drawing (benchmarks/bench_page.py: about a fifth of a key press).
+ * One request per drawn frame, and only while a slider has the keyboard.
+ */
+function prefetchNextStep() {
+  const last = app.lastStep;
+  const range = document.activeElement;
+  if (!app.prefetchOn || !last || range?.id !== `${last.name}-range`) return;
+  const spec = PARAMS.find((p) => p.name === last.name);
+  const position = Number(range.value) + last.step;
+  if (!spec || position < Number(range.min) || position > Number(range.max)) return;
+  const next = { ...app.state, [spec.name]: sliderToValue(spec, position) };
+  couple(next, spec.name);
+  if (Object.keys(validate(next)).length) return;
+  const body = exploreBody(next);
+  const key = JSON.stringify(body);
+  if (app.prefetch.has(key)) return;
+  const asked = postJSON("/api/explore", body, undefined, "low");
+  asked.catch(() => app.prefetch.delete(key));
+  app.prefetch.set(key, asked);
+  while (app.prefetch.size > PREFETCH_KEEP) app.prefetch.delete(app.prefetch.keys().next().value);
 }
 
 /** Deep equality of figures; arrays element by element (they come fresh each frame). */
@@ -494,20 +541,31 @@ async function ensureLugre() {
 // ---------------------------------------------------------------------------------
 
 /** A history entry for the state, only when it is valid: a shared link never opens
- *  broken. */
+ *  broken. Written in a task of its own once the frame is drawn: pushState costs a key
+ *  press 1–4 ms (benchmarks/bench_page.py) that the plots should not wait for. */
 function commit() {
-  if (Object.keys(validate(app.state)).length) return;
-  const query = toQuery(app.state);
-  if (query !== window.location.search) window.history.pushState(null, "", query);
+  app.commitPending = true;
+  if (!app.busy) setTimeout(writeHistory);
 }
 
-/** Keep Fs ≥ Fc as the person edits one of them: the other follows (MODEL.md §1). */
-function couple(name) {
-  const Fc = parseNumber(app.state.Fc);
-  const Fs = parseNumber(app.state.Fs);
+function writeHistory() {
+  if (!app.commitPending) return;
+  app.commitPending = false;
+  if (!Object.keys(validate(app.state)).length) {
+    const query = toQuery(app.state);
+    if (query !== window.location.search) window.history.pushState(null, "", query);
+  }
+  if (!app.busy) flush("ready");
+}
+
+/** Keep Fs ≥ Fc as the person edits one of them in `state`: the other follows
+ *  (MODEL.md §1). True when it moved. */
+function couple(state, name) {
+  const Fc = parseNumber(state.Fc);
+  const Fs = parseNumber(state.Fs);
   if (!(Fc > 0 && Fs > 0) || Fs >= Fc) return false;
-  if (name === "Fc") app.state.Fs = Fc;
-  else if (name === "Fs") app.state.Fc = Fs;
+  if (name === "Fc") state.Fs = Fc;
+  else if (name === "Fs") state.Fc = Fs;
   else return false;
   return true;
 }
@@ -536,13 +594,18 @@ function wireControls() {
       const value = sliderToValue(spec, range.value);
       app.state[spec.name] = value;
       box.value = String(value);
-      if (couple(spec.name)) writeControls(app.state, { except: range });
+      if (couple(app.state, spec.name)) writeControls(app.state, { except: range });
       refresh();
     });
+    range.addEventListener("keydown", (event) => {
+      const step = KEY_STEP[event.key];
+      app.lastStep = step ? { name: spec.name, step } : null;
+    });
+    range.addEventListener("pointerdown", () => { app.lastStep = null; });
     box.addEventListener("input", () => {
       const value = parseNumber(box.value);
       app.state[spec.name] = Number.isNaN(value) ? box.value : value;
-      couple(spec.name);
+      couple(app.state, spec.name);
       writeControls(app.state, { except: box });
       refresh();
     });
@@ -608,6 +671,7 @@ function wireControls() {
     });
   }
   window.addEventListener("popstate", () => {
+    app.commitPending = false; // the entry walked to is the state now
     setState(fromQuery(window.location.search, app.defaults), { push: false });
   });
 }
@@ -680,8 +744,9 @@ async function init() {
 }
 
 window.breakaway = {
-  /** Resolves once the four plots show the current state (or its inline errors). */
-  ready: () => whenIdle("ready", () => app.busy),
+  /** Resolves once the four plots show the current state (or its inline errors) and
+   *  the URL holds it. */
+  ready: () => whenIdle("ready", () => app.busy || app.commitPending),
   /** Resolves once no simulation is pending or running. */
   simReady: () => whenIdle("sim", () => app.simBusy),
   /** Resolves once the ramp experiment shows the current state; its answer. */
@@ -695,6 +760,10 @@ window.breakaway = {
   /** Completed redraws, and the last one's duration (input to plots drawn) [ms]. */
   frames: () => app.frames,
   reacts: () => app.reacts,
+  /** Frames that a key press found asked for ahead; `prefetch(false)` stops asking
+   *  ahead (the benchmark's alternative). */
+  prefetchHits: () => app.prefetchHits,
+  prefetch: (on) => { app.prefetchOn = Boolean(on); app.prefetch.clear(); },
   lastRedrawMs: () => app.lastRedrawMs,
   /** Resolves once the data panel runs no fit; the finished fit's report (or null). */
   fitReady,

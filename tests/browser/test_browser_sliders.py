@@ -3,6 +3,9 @@ others stay as they were."""
 
 from __future__ import annotations
 
+import json
+from urllib.parse import parse_qs, urlparse
+
 import numpy as np
 import pytest
 
@@ -137,3 +140,71 @@ def test_f_hat_choice_redraws_phase_and_breakaway(explorer):
     assert after["phase"] != before["phase"]
     assert after["breakaway"]["F̂ = self"] == before["breakaway"]["F̂ = self"]
     assert after["breakaway"]["current k = 1"] != before["breakaway"]["current k = 1"]
+
+
+def explore_requests(page) -> list[str]:
+    """Collects the /api/explore requests the page sends from now on (their bodies)."""
+    sent: list[str] = []
+    page.on("request", lambda r: r.url.endswith("/api/explore") and sent.append(r.post_data))
+    return sent
+
+
+def test_arrow_steps_find_their_frame_asked_for_ahead_and_it_is_the_models(explorer):
+    # Fc = Fs: every step right on Fc moves Fs with it, so the frame asked for ahead must
+    # follow the coupling too
+    explorer.open("?sim=0&Fc=1.5&Fs=1.5")
+    page = explorer.page
+    slider = page.get_by_label("Fc [N] slider", exact=True)
+    slider.focus()
+    history = page.evaluate("history.length")
+    hits = page.evaluate("window.breakaway.prefetchHits()")
+    slider.press("ArrowRight")
+    explorer.ready()
+    first = explorer.state()
+    assert first["Fc"] > 1.5 and first["Fs"] == first["Fc"]
+    assert page.evaluate("window.breakaway.prefetchHits()") == hits  # nothing was ahead yet
+    sent = explore_requests(page)
+    slider.press("ArrowRight")
+    explorer.ready()
+    second = explorer.state()
+    assert second["Fc"] > first["Fc"] and second["Fs"] == second["Fc"]
+    assert page.evaluate("window.breakaway.prefetchHits()") == hits + 1
+    assert_plots_match_model(explorer, second)
+    # the frame for the second step was on its way before the key was pressed: what the
+    # page sent since is the next step ahead, never the state it now shows
+    current = {"Fc": second["Fc"], "Fs": second["Fs"]}
+    assert all(json.loads(body)["Fc"] != current["Fc"] for body in sent)
+    # each step is a history entry, written once its frame is drawn
+    assert page.evaluate("history.length") == history + 2
+    query = parse_qs(urlparse(page.url).query)
+    assert float(query["Fc"][0]) == second["Fc"] and float(query["Fs"][0]) == second["Fs"]
+    # turning back: the step asked for ahead (further right) is not used
+    slider.press("ArrowLeft")
+    explorer.ready()
+    assert page.evaluate("window.breakaway.prefetchHits()") == hits + 1
+    assert explorer.state()["Fc"] == first["Fc"]
+    assert_plots_match_model(explorer)
+    # Plotly's configuration is given with a plot's first drawing only; it holds after
+    # redraws: no export button in the explorer's toolbar, none in the tab order
+    titles = page.evaluate("[...document.querySelectorAll('#plots .modebar-btn')]"
+                           ".map(b => b.getAttribute('data-title') || '')")
+    assert titles and not any("png" in t.lower() for t in titles)
+    assert page.evaluate("[...document.querySelectorAll('#plots .modebar-btn')]"
+                         ".every(b => b.tabIndex === -1)")
+
+
+def test_a_pointer_on_the_slider_asks_for_nothing_ahead(explorer):
+    explorer.open("?sim=0")
+    page = explorer.page
+    slider = page.get_by_label("k [N/s] slider", exact=True)
+    slider.focus()
+    slider.press("ArrowRight")
+    explorer.ready()
+    sent = explore_requests(page)
+    box = slider.bounding_box()
+    page.mouse.click(box["x"] + box["width"] * 0.8, box["y"] + box["height"] / 2)
+    explorer.ready()
+    page.wait_for_timeout(300)
+    assert len(sent) == 1  # the clicked position's frame, and no step ahead of it
+    assert explorer.state()["k"] == json.loads(sent[0])["k"]
+    assert_plots_match_model(explorer)
