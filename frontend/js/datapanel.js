@@ -22,8 +22,6 @@ import {
 
 /** Explorer parameters that "Use these parameters" sets (rounded to this many digits). */
 const DIGITS = 6;
-const SYMBOLS = { Fc: "Fc", Fs: "Fs", V: "V", delta: "δ", s: "s", sigma: "σ" };
-
 const panel = {
   state: "idle",
   generation: 0, // each started fit; answers for an older one are dropped
@@ -85,11 +83,11 @@ export function explorerParams(report, specs = PARAMS) {
     if (min !== spec.min || max !== spec.max) {
       ranges[name] = { min, max };
       const low = spec.scale === "log0" ? 0 : min;
-      widened.push(`${SYMBOLS[name]} ${low} … ${max}`);
+      widened.push(`${spec.symbol} ${low} … ${max}`);
     }
   }
   if (widened.length) notes.push(`slider ranges widened to the data's scale: ${widened.join(", ")}`);
-  const others = Object.keys(fitted).filter((name) => !(name in SYMBOLS));
+  const others = Object.keys(fitted).filter((name) => !specs.some((spec) => spec.name === name));
   if (others.length) notes.push(`the explorer has no control for ${others.join(", ")}`);
   return { values, notes, ranges };
 }
@@ -385,7 +383,8 @@ function useParameters() {
   if (!job || !panel.applyParams) return;
   const { values, notes, ranges } = explorerParams(job.report);
   const applied = panel.applyParams(values, { ranges, measured: measuredOverlay(job) });
-  const set = Object.keys(values).map((name) => `${SYMBOLS[name]} = ${values[name]}`);
+  const symbol = (name) => PARAMS.find((spec) => spec.name === name)?.symbol ?? name;
+  const set = Object.keys(values).map((name) => `${symbol(name)} = ${values[name]}`);
   $("use-note").textContent = applied === false
     ? "The explorer is not ready yet; try again in a moment."
     : `Set ${set.join(", ")}.${notes.length ? ` Note: ${notes.join("; ")}.` : ""}`;
