@@ -20,18 +20,31 @@ MAX_POINTS = 2000
 
 
 def presliding_z(x, v, s):
-    """z = s·|x − x_r| along a simulated run [-]: x_r is the position at the last change
-    of sign of ẋ (x_r = 0 from rest, the virgin state)."""
+    """z = s·|x − x_r| along a simulated run [-] (E5).
+
+    Parameters
+    ----------
+    x : array_like
+        Position [m].
+    v : array_like
+        Velocity ẋ [m/s], same shape; samples with ẋ = 0 keep the last direction.
+    s : float
+        Presliding scale [1/m].
+
+    Returns
+    -------
+    numpy.ndarray
+        z, where x_r is the position at the last change of sign of ẋ (x_r = 0 from rest,
+        the virgin state). Vectorised: a run holds up to 200,000 samples.
+    """
     x = np.asanyarray(x, dtype=float)
-    sign = np.sign(v)
-    x_r = np.zeros_like(x)
-    last, previous = 0.0, 0.0
-    for i in range(x.size):
-        if sign[i] != 0 and previous != 0 and sign[i] != previous:
-            last = x[i]
-        if sign[i] != 0:
-            previous = sign[i]
-        x_r[i] = last
+    sign = np.sign(np.asanyarray(v, dtype=float))
+    moving = np.flatnonzero(sign)
+    turned = moving[1:][sign[moving[1:]] != sign[moving[:-1]]]
+    last_turn = np.full(x.size, -1)
+    last_turn[turned] = turned
+    last_turn = np.maximum.accumulate(last_turn) if x.size else last_turn
+    x_r = np.where(last_turn >= 0, x[np.maximum(last_turn, 0)], 0.0) if x.size else x
     return s * np.abs(x - x_r)
 
 
