@@ -283,9 +283,10 @@ export function styled(figure, { present = false, dark = false } = {}) {
     };
   }
   if (present) {
-    // room for the larger ticks, and for a legend below the plot in its larger type
+    // room for the larger ticks (half the last x label reaches past the axis end), and
+    // for a legend below the plot in its larger type
     const bottom = Math.max(60, (layout.margin?.b ?? 42) + 24);
-    layout.margin = { ...(layout.margin ?? {}), l: 78, b: bottom, ...(layout.yaxis2 ? { r: 96 } : {}) };
+    layout.margin = { ...(layout.margin ?? {}), l: 78, b: bottom, r: layout.yaxis2 ? 96 : 28 };
   }
   let data = present ? figure.data.map((trace) => ({
     ...trace,

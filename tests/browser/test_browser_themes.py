@@ -102,3 +102,29 @@ def test_the_phase_legend_sits_below_the_axes(explorer):
              const top = gd.getBoundingClientRect().top, size = gd._fullLayout._size;
              return gd.querySelector('.legend').getBoundingClientRect().top - top - (size.t + size.h); }""")
     assert below > 0  # the legend starts under the plot area, clear of both axes
+
+
+#: Tick labels are drawn where they fall (Plotly is told not to measure and hide the ones
+#: past an axis end), so every one must fit inside its plot.
+TICKS_OUTSIDE = """() => {
+  const outside = [];
+  for (const div of document.querySelectorAll('#plots .js-plotly-plot')) {
+    const plot = div.getBoundingClientRect();
+    for (const label of div.querySelectorAll('.xtick text, .ytick text, .y2tick text')) {
+      const box = label.getBoundingClientRect();
+      if (box.width && (box.right > plot.right + 0.5 || box.left < plot.left - 0.5)) {
+        outside.push(`${div.id}: ${label.textContent}`);
+      }
+    }
+  }
+  return outside;
+}"""
+
+
+@pytest.mark.parametrize("viewport", [(390, 844), (1280, 800), (1920, 1080)])
+@pytest.mark.parametrize("present", [0, 1])
+def test_every_tick_label_fits_inside_its_plot(explorer, viewport, present):
+    explorer.page.set_viewport_size({"width": viewport[0], "height": viewport[1]})
+    explorer.open(f"?sim=0&present={present}")
+    assert explorer.page.locator("#plots .xtick text").count() > 0
+    assert explorer.page.evaluate(TICKS_OUTSIDE) == []
