@@ -28,12 +28,12 @@ import {
 } from "./state.js";
 
 const SIM_DEBOUNCE_MS = 350;
+const RAMP_DEBOUNCE_MS = 60;
+const PLAY_SECONDS = 4;
 /** Arrow keys on a focused slider: one position up or down. */
 const KEY_STEP = { ArrowRight: 1, ArrowUp: 1, ArrowLeft: -1, ArrowDown: -1 };
 /** Frames asked for ahead of a key press, at most (the older ones are dropped). */
 const PREFETCH_KEEP = 2;
-const RAMP_DEBOUNCE_MS = 60;
-const PLAY_SECONDS = 4;
 /** The explorer's plots export through the page's own buttons (CSV, PNG). */
 const EXPLORER_CONFIG = { modeBarButtonsToRemove: [...PLOT_CONFIG.modeBarButtonsToRemove, "toImage"] };
 
