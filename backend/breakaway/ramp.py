@@ -43,8 +43,8 @@ def presliding_z(x, v, s):
     turned = moving[1:][sign[moving[1:]] != sign[moving[:-1]]]
     last_turn = np.full(x.size, -1)
     last_turn[turned] = turned
-    last_turn = np.maximum.accumulate(last_turn) if x.size else last_turn
-    x_r = np.where(last_turn >= 0, x[np.maximum(last_turn, 0)], 0.0) if x.size else x
+    last_turn = np.maximum.accumulate(last_turn)
+    x_r = np.where(last_turn >= 0, x[np.maximum(last_turn, 0)], 0.0)
     return s * np.abs(x - x_r)
 
 
