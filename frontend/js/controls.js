@@ -19,6 +19,11 @@ export function setParams(table) {
   }));
 }
 
+/** The PARAMS row of a parameter (undefined for a name without a control). */
+export function paramSpec(name) {
+  return PARAMS.find((spec) => spec.name === name);
+}
+
 export const F_HAT_CHOICES = ["Fc", "Fs", "avg", "self"];
 export const MIN_ABS_DELTA = 0.05;
 

@@ -12,7 +12,7 @@ import { ApiError, getJSON } from "./api.js";
 import {
   cancelJob, isActive, pollJob, residualsCsv, sampleFile, submitFit,
 } from "./fitjob.js";
-import { PARAMS, roundSignificant } from "./controls.js";
+import { PARAMS, paramSpec, roundSignificant } from "./controls.js";
 import { drawFigure, onSchemeChange } from "./draw.js";
 import { download } from "./export.js";
 import { fitFigures, formatNumber, modelCaption } from "./fitplots.js";
@@ -383,8 +383,7 @@ function useParameters() {
   if (!job || !panel.applyParams) return;
   const { values, notes, ranges } = explorerParams(job.report);
   const applied = panel.applyParams(values, { ranges, measured: measuredOverlay(job) });
-  const symbol = (name) => PARAMS.find((spec) => spec.name === name)?.symbol ?? name;
-  const set = Object.keys(values).map((name) => `${symbol(name)} = ${values[name]}`);
+  const set = Object.keys(values).map((name) => `${paramSpec(name)?.symbol ?? name} = ${values[name]}`);
   $("use-note").textContent = applied === false
     ? "The explorer is not ready yet; try again in a moment."
     : `Set ${set.join(", ")}.${notes.length ? ` Note: ${notes.join("; ")}.` : ""}`;

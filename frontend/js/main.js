@@ -10,8 +10,8 @@
 
 import { ApiError, getJSON, postJSON } from "./api.js";
 import {
-  PARAMS, buildControls, parseNumber, setParams, showErrors, sliderToValue, validate,
-  writeControls,
+  PARAMS, buildControls, paramSpec, parseNumber, setParams, showErrors, sliderToValue,
+  validate, writeControls,
 } from "./controls.js";
 import { fitReady, fitReport, initDataPanel } from "./datapanel.js";
 import { exportCsv, exportPng } from "./export.js";
@@ -32,8 +32,6 @@ const RAMP_DEBOUNCE_MS = 60;
 const PLAY_SECONDS = 4;
 /** Arrow keys on a focused slider: one position up or down. */
 const KEY_STEP = { ArrowRight: 1, ArrowUp: 1, ArrowLeft: -1, ArrowDown: -1 };
-/** Frames asked for ahead of a key press, at most (the older ones are dropped). */
-const PREFETCH_KEEP = 2;
 /** The explorer's plots export through the page's own buttons (CSV, PNG). */
 const EXPLORER_CONFIG = { modeBarButtonsToRemove: [...PLOT_CONFIG.modeBarButtonsToRemove, "toImage"] };
 
@@ -43,10 +41,10 @@ const app = {
   state: null,
   frame: null,
   frameKey: null, // the /api/explore body the frame answers
-  prefetch: new Map(), // /api/explore body → its answer, asked for ahead of the key press
+  ahead: null, // {key, asked}: the next arrow step's /api/explore body and its answer
   prefetchOn: true,
   prefetchHits: 0,
-  lastStep: null, // {name, step}: the last arrow key on a slider
+  lastStep: null, // {spec, step}: the last arrow key on a slider
   frames: 0,
   reacts: 0, // Plotly.react calls (plots whose figure did not change are left alone)
   version: 0,
@@ -177,11 +175,11 @@ function refresh() {
 /** The frame for an explore body: the one asked for ahead of this key press when there
  *  is one (a failed one is asked for again), else a new request. */
 function frameFor(body, key, signal) {
-  const early = app.prefetch.get(key);
-  app.prefetch.clear();
-  if (!early) return postJSON("/api/explore", body, signal);
+  const { ahead } = app;
+  app.ahead = null;
+  if (ahead?.key !== key) return postJSON("/api/explore", body, signal);
   app.prefetchHits += 1;
-  return early.catch(() => postJSON("/api/explore", body, signal));
+  return ahead.asked.catch(() => postJSON("/api/explore", body, signal));
 }
 
 /**
@@ -193,20 +191,19 @@ function frameFor(body, key, signal) {
 function prefetchNextStep() {
   const last = app.lastStep;
   const range = document.activeElement;
-  if (!app.prefetchOn || !last || range?.id !== `${last.name}-range`) return;
-  const spec = PARAMS.find((p) => p.name === last.name);
+  if (!app.prefetchOn || !last || range?.id !== `${last.spec.name}-range`) return;
   const position = Number(range.value) + last.step;
-  if (!spec || position < Number(range.min) || position > Number(range.max)) return;
-  const next = { ...app.state, [spec.name]: sliderToValue(spec, position) };
-  couple(next, spec.name);
+  if (position < Number(range.min) || position > Number(range.max)) return;
+  const next = { ...app.state };
+  moveSlider(next, last.spec, position);
   if (Object.keys(validate(next)).length) return;
   const body = exploreBody(next);
   const key = JSON.stringify(body);
-  if (app.prefetch.has(key)) return;
+  // a step the quasi-static curves do not see (the mass m) needs no frame
+  if (key === app.frameKey) return;
   const asked = postJSON("/api/explore", body, undefined, "low");
-  asked.catch(() => app.prefetch.delete(key));
-  app.prefetch.set(key, asked);
-  while (app.prefetch.size > PREFETCH_KEEP) app.prefetch.delete(app.prefetch.keys().next().value);
+  asked.catch(() => {}); // a failed one is asked for again when its key is pressed
+  app.ahead = { key, asked };
 }
 
 /** Deep equality of figures; arrays element by element (they come fresh each frame). */
@@ -292,7 +289,7 @@ function clearPinned() {
 
 async function runSweep() {
   const name = $("sweep-param").value;
-  const spec = PARAMS.find((p) => p.name === name);
+  const spec = paramSpec(name);
   if (!spec || !app.frame) return;
   const values = sweepValues(name, app.state);
   $("sweep-status").textContent = `Sweeping ${spec.label} over ${values.join(", ")}…`;
@@ -558,6 +555,13 @@ function writeHistory() {
   if (!app.busy) flush("ready");
 }
 
+/** `state` with `spec`'s slider at `position` (and Fs/Fc coupled); true when the other
+ *  of Fs and Fc moved. */
+function moveSlider(state, spec, position) {
+  state[spec.name] = sliderToValue(spec, position);
+  return couple(state, spec.name);
+}
+
 /** Keep Fs ≥ Fc as the person edits one of them in `state`: the other follows
  *  (MODEL.md §1). True when it moved. */
 function couple(state, name) {
@@ -591,15 +595,14 @@ function wireControls() {
     const box = $(spec.name);
     const range = $(`${spec.name}-range`);
     range.addEventListener("input", () => {
-      const value = sliderToValue(spec, range.value);
-      app.state[spec.name] = value;
-      box.value = String(value);
-      if (couple(app.state, spec.name)) writeControls(app.state, { except: range });
+      const coupled = moveSlider(app.state, spec, range.value);
+      box.value = String(app.state[spec.name]);
+      if (coupled) writeControls(app.state, { except: range });
       refresh();
     });
     range.addEventListener("keydown", (event) => {
       const step = KEY_STEP[event.key];
-      app.lastStep = step ? { name: spec.name, step } : null;
+      app.lastStep = step ? { spec, step } : null;
     });
     range.addEventListener("pointerdown", () => { app.lastStep = null; });
     box.addEventListener("input", () => {
@@ -703,7 +706,7 @@ function wireTabs() {
 function applyFitted(values, { ranges = {}, measured = null } = {}) {
   if (!app.state || !app.defaults) return false;
   for (const [name, range] of Object.entries(ranges)) {
-    const spec = PARAMS.find((p) => p.name === name);
+    const spec = paramSpec(name);
     if (spec) Object.assign(spec, range);
   }
   app.measured = measured;
@@ -763,7 +766,7 @@ window.breakaway = {
   /** Frames that a key press found asked for ahead; `prefetch(false)` stops asking
    *  ahead (the benchmark's alternative). */
   prefetchHits: () => app.prefetchHits,
-  prefetch: (on) => { app.prefetchOn = Boolean(on); app.prefetch.clear(); },
+  prefetch: (on) => { app.prefetchOn = Boolean(on); app.ahead = null; },
   lastRedrawMs: () => app.lastRedrawMs,
   /** Resolves once the data panel runs no fit; the finished fit's report (or null). */
   fitReady,

@@ -208,3 +208,18 @@ def test_a_pointer_on_the_slider_asks_for_nothing_ahead(explorer):
     assert len(sent) == 1  # the clicked position's frame, and no step ahead of it
     assert explorer.state()["k"] == json.loads(sent[0])["k"]
     assert_plots_match_model(explorer)
+
+
+def test_arrow_steps_of_the_mass_ask_for_no_frame(explorer):
+    # the quasi-static curves do not use m: neither its step nor the next one needs a frame
+    explorer.open("?sim=0")
+    page = explorer.page
+    sent = explore_requests(page)
+    slider = page.get_by_label("m [kg] slider", exact=True)
+    slider.focus()
+    for _ in range(2):
+        slider.press("ArrowRight")
+        explorer.ready()
+    page.wait_for_timeout(300)
+    assert explorer.state()["m"] > DEFAULTS["m"]
+    assert sent == []
