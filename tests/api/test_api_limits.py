@@ -115,6 +115,24 @@ def test_csv_errors_echo_a_bounded_part_of_the_input(client):
     assert response.json()["detail"][0]["line"] == 3
 
 
+@pytest.mark.parametrize("path", ["/api/fit", "/api/fit/jobs"])
+@pytest.mark.parametrize(("meta", "message"), [
+    ("# s: -1", "metadata 's' (the presliding scale) must be > 0, between 1e-30 and 1e+30, got '-1'"),
+    ("# s: 1e-320", "metadata 's' (the presliding scale) must be > 0, between 1e-30 and 1e+30"),
+    ("# F0: 1e400", "metadata 'f0' must be a finite number, got '1e400'"),
+])
+def test_bad_metadata_is_refused_before_a_job_starts(client, path, meta, message):
+    rows = "\n".join(f"{k},{1.2 + 0.01 * k}" for k in range(1, 13))
+    body = f"{meta}\nk,F_ba\n{rows}\n".encode()
+    response = client.post(path, files={"file": ("bad.csv", body, "text/csv")})
+    # a 422 naming the line at once: never a 202 for a job that would fail later
+    assert response.status_code == 422
+    error = response.json()["detail"][0]
+    assert error["loc"] == ["body", "file"] and error["line"] == 1
+    assert message in error["msg"]
+    assert not any(leak in response.text for leak in LEAKS)
+
+
 def test_a_method_an_api_path_does_not_take_is_405_with_allow(client):
     response = client.put("/api/explore", json={})
     assert response.status_code == 405
