@@ -8,9 +8,11 @@
    ``data-frame`` changes with ``data-ready="true"``), both read with ``performance.now()``
    in the page. The mass m moves only the simulations, so for m the end is the ramp
    experiment redrawn (``data-ramp-frame``). p50/p95 per slider, the default page (ramp
-   and simulation on), 1280×800. Against it, in the same run: the same presses without
-   the frame of the next arrow step asked for ahead (``window.breakaway.prefetch(false)``:
-   every press waits for its request), and with every plot that changed drawn from
+   and simulation on), 1280×800. Against it, in the same run: the same presses with the
+   next arrow step's frame asked for ahead but its plots not drawn ahead into the hidden
+   graphs (``window.breakaway.drawAhead(false)``: every press waits for ``Plotly.react``),
+   with nothing ahead (``window.breakaway.prefetch(false)``: every press waits for its
+   request too), and, without drawing ahead, with every plot that changed drawn from
    scratch (``Plotly.purge`` + ``newPlot``) instead of ``Plotly.react``.
 2. load: first load on an emulated 20 Mbit/s link with 40 ms latency (Chrome DevTools
    network emulation, cache disabled), navigation start to four drawn plots: the page as
@@ -154,25 +156,29 @@ def bench_keys(presses: int) -> None:
     with Server() as server, sync_playwright() as playwright:
         browser = launch(playwright)
         results = {}
-        hits = 0
-        for label, setup in (("the page", None), ("nothing ahead", "window.breakaway.prefetch(false)"),
-                             ("newPlot", NEW_PLOT)):
+        hits = surfaces = None
+        variants = (("the page", []),
+                    ("not drawn ahead", ["window.breakaway.drawAhead(false)"]),
+                    ("nothing ahead", ["window.breakaway.prefetch(false)"]),
+                    ("newPlot", ["window.breakaway.drawAhead(false)", NEW_PLOT]))
+        for label, setup in variants:
             page = browser.new_page(viewport={"width": 1280, "height": 800})
             page.goto(f"{server.url}/")
             page.evaluate("window.breakaway.rampReady()")
             page.evaluate(PROBE)
-            if setup:
-                page.evaluate(setup)
+            for script in setup:
+                page.evaluate(script)
             results[label] = {name: press_latencies(page, name, presses) for name in SLIDERS}
             if label == "the page":
                 hits = page.evaluate("window.breakaway.prefetchHits()")
+                surfaces = page.evaluate("window.breakaway.surfaces()")
             page.close()
         browser.close()
     labels = list(results)
-    print(f"   {'slider':8s}" + "".join(f"   {label + ': p50':>20s} {'p95':>8s}" for label in labels))
+    print(f"   {'slider':8s}" + "".join(f" {label + ': p50':>22s} {'p95':>8s}" for label in labels))
     for name in SLIDERS:
         print(f"   {name:8s}" + "".join(
-            f"   {pct(results[label][name], .5):17.1f} ms {pct(results[label][name], .95):5.1f} ms"
+            f" {pct(results[label][name], .5):19.1f} ms {pct(results[label][name], .95):5.1f} ms"
             for label in labels))
     for label in labels:
         every = [v for name in SLIDERS if name != "m" for v in results[label][name]]
@@ -180,6 +186,9 @@ def bench_keys(presses: int) -> None:
               f"p95 {pct(every, .95):.1f} ms")
     print(f"   presses that found their frame asked for ahead: {hits} of "
           f"{presses * (len(SLIDERS) - 1)} (m asks for no frame)")
+    print(f"   the page's plots: {surfaces['swaps']} shown from the graph drawn ahead, "
+          f"{surfaces['reacts']} drawn by Plotly.react when shown (the ramp's simulated "
+          f"path, turns of direction), {surfaces['drawnAhead']} drawn ahead")
 
 
 def first_load(browser, url: str, identity: bool) -> float:

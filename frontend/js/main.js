@@ -15,8 +15,8 @@ import {
 } from "./controls.js";
 import { fitReady, fitReport, initDataPanel } from "./datapanel.js";
 import { exportCsv, exportPng } from "./export.js";
-import { PLOT_CONFIG, drawFigure, onSchemeChange, pageStyle } from "./draw.js";
-import { PLOT_IDS, breakawayFigure, figures, phaseFigure, styled } from "./plots.js";
+import { PLOT_CONFIG, onSchemeChange, pageStyle } from "./draw.js";
+import { PLOT_IDS, figures, styled } from "./plots.js";
 import {
   explainBreakaway, rampBody, rampFigure, simulationPhaseTrace,
 } from "./ramp.js";
@@ -26,6 +26,7 @@ import {
 import {
   defaultState, exploreBody, fromQuery, matchingPreset, presetState, simulateBody, toQuery,
 } from "./state.js";
+import { addAheadGraphs, drawAhead, holds, show, surfaceStats } from "./surfaces.js";
 
 const SIM_DEBOUNCE_MS = 350;
 const RAMP_DEBOUNCE_MS = 60;
@@ -41,12 +42,14 @@ const app = {
   state: null,
   frame: null,
   frameKey: null, // the /api/explore body the frame answers
-  ahead: null, // {key, asked}: the next arrow step's /api/explore body and its answer
+  ahead: null, // {key, asked, state, frame}: the next arrow step, its /api/explore body
+  // and the answer asked for (the frame once it is here)
   prefetchOn: true,
+  drawAheadOn: true,
+  aheadTimer: null, // the next plot to draw ahead
   prefetchHits: 0,
   lastStep: null, // {spec, step}: the last arrow key on a slider
   frames: 0,
-  reacts: 0, // Plotly.react calls (plots whose figure did not change are left alone)
   version: 0,
   exploreController: null,
   busy: true,
@@ -202,61 +205,63 @@ function prefetchNextStep() {
   // a step the quasi-static curves do not see (the mass m) needs no frame
   if (key === app.frameKey) return;
   const asked = postJSON("/api/explore", body, undefined, "low");
-  asked.catch(() => {}); // a failed one is asked for again when its key is pressed
-  app.ahead = { key, asked };
+  const ahead = { key, asked, state: next, frame: null };
+  app.ahead = ahead;
+  // a failed one is asked for again when its key is pressed
+  asked.then((frame) => {
+    ahead.frame = frame;
+    scheduleDrawAhead();
+  }, () => {});
 }
 
-/** Deep equality of figures; arrays element by element (they come fresh each frame). */
-function sameFigure(a, b) {
-  if (a === b) return true;
-  if (typeof a !== "object" || typeof b !== "object" || a === null || b === null) {
-    return Number.isNaN(a) && Number.isNaN(b);
-  }
-  if (Array.isArray(a) !== Array.isArray(b)) return false;
-  if (Array.isArray(a)) {
-    if (a.length !== b.length) return false;
-    for (let i = 0; i < a.length; i += 1) {
-      const x = a[i];
-      const y = b[i];
-      if (x !== y && !(typeof x === "object" && sameFigure(x, y))) return false;
+/** Draw the next arrow step's plots into the hidden graphs while the page has nothing
+ *  else to do, one plot per task (a key press waits for one at most); and again when
+ *  what they would show changed (a simulation came in, the style changed). */
+function scheduleDrawAhead() {
+  if (!app.drawAheadOn || app.aheadTimer) return;
+  app.aheadTimer = setTimeout(drawNextAhead);
+}
+
+function drawNextAhead() {
+  app.aheadTimer = null;
+  const { ahead } = app;
+  // while busy, the frame being drawn asks for its own next step; while playing, the
+  // phase plot changes every animation frame
+  if (app.busy || app.playing || !ahead?.frame || ahead !== app.ahead) return;
+  const figs = pageFigures(ahead.frame, ahead.state);
+  for (const id of PLOT_IDS) {
+    const drawing = drawAhead(id, styled(figs[id], pageStyle()), EXPLORER_CONFIG);
+    if (drawing) {
+      // a graph that failed to draw ahead is drawn when it is needed
+      drawing.then(scheduleDrawAhead, () => {});
+      return;
     }
-    return true;
   }
-  const keys = Object.keys(a);
-  if (keys.length !== Object.keys(b).length) return false;
-  return keys.every((key) => key in b && sameFigure(a[key], b[key]));
 }
 
-// plot id -> what it shows: the traces, and the layout as JSON taken before Plotly
-// writes its computed ranges into the layout object
-const drawn = {};
-
-/** Plotly.react on every plot whose figure changed; an unchanged plot already shows it. */
-function react(id, plain) {
-  const figure = styled(plain, pageStyle());
-  const layoutKey = JSON.stringify(figure.layout);
-  const last = drawn[id];
-  if (last && last.layoutKey === layoutKey && sameFigure(last.data, figure.data)) {
-    return Promise.resolve();
-  }
-  drawn[id] = { data: figure.data, layoutKey };
-  app.reacts += 1;
-  const element = $(`plot-${id}`);
-  return drawFigure(element, figure, { config: EXPLORER_CONFIG, shown: true });
+/** Show a figure on plot `id`, styled as the page is shown now; what is left drawn
+ *  ahead may no longer be what the next step shows. */
+function showPlot(id, plain) {
+  return show(id, styled(plain, pageStyle()), EXPLORER_CONFIG).then(scheduleDrawAhead);
 }
 
 function draw() {
-  const figs = decorate(figures(app.frame, app.state, app.sim, app.state.lugre ? app.lugre : null));
-  return Promise.all(PLOT_IDS.map((id) => react(id, figs[id])));
+  const figs = pageFigures(app.frame, app.state);
+  return Promise.all(PLOT_IDS.map((id) => showPlot(id, figs[id])));
 }
 
-/** The model figures with what the person added: the simulated path, pinned
- *  references, a sweep. */
-function decorate(figs, ids = PLOT_IDS) {
-  const out = { ...figs };
-  if (ids.includes("phase")) out.phase = withSimulatedPath(figs.phase);
+/**
+ * The figures the page shows for `state`, whose curves `frame` holds (all four, or
+ * those in `ids`): the model's curves with what the person added, the simulated
+ * points and path (faded when they are for another state), pinned references, a
+ * sweep, the measured points.
+ */
+function pageFigures(frame, state, ids = PLOT_IDS) {
+  const sim = app.sim && { ...app.sim, stale: simStale(state, frame) };
+  const out = figures(frame, state, sim, state.lugre ? app.lugre : null, ids);
+  if (ids.includes("phase")) out.phase = withSimulatedPath(out.phase, state);
   if (app.sweep) {
-    const traces = sweepTraces(app.sweep, app.state, app.sweep.label);
+    const traces = sweepTraces(app.sweep, state, app.sweep.label);
     for (const id of ["breakaway", "hysteresis"]) {
       if (ids.includes(id)) out[id] = withTraces(out[id], traces[id]);
     }
@@ -322,11 +327,12 @@ function showTourStep(index) {
   setState(tourState(index, app.presets, app.state));
 }
 
-/** The phase figure with the simulated ramp's path (z, ẋ) over the E12 family. */
-function withSimulatedPath(figure) {
+/** The phase figure with the simulated ramp's path (z, ẋ) over the E12 family, faded
+ *  when the path is for another state than `state`. */
+function withSimulatedPath(figure, state) {
   if (!app.ramp) return figure;
   const trace = simulationPhaseTrace(app.ramp, app.cursor);
-  if (app.rampKey !== rampKeyNow()) trace.opacity = 0.35;
+  if (app.rampKey !== JSON.stringify(rampBody(state))) trace.opacity = 0.35;
   return { ...figure, data: [...figure.data, trace] };
 }
 
@@ -389,10 +395,9 @@ async function runRamp() {
 function drawRamp() {
   if (!app.ramp || !app.frame) return Promise.resolve();
   $("ba-explain").textContent = explainBreakaway(app.ramp, app.state);
-  const phase = decorate({ phase: phaseFigure(app.frame, app.state) }, ["phase"]).phase;
   return Promise.all([
-    react("ramp", rampFigure(app.ramp, app.state, app.cursor)),
-    react("phase", phase),
+    showPlot("ramp", rampFigure(app.ramp, app.state, app.cursor)),
+    showPlot("phase", pageFigures(app.frame, app.state, ["phase"]).phase),
   ]);
 }
 
@@ -432,8 +437,7 @@ function togglePlay() {
 
 function drawBreakaway() {
   if (!app.frame) return Promise.resolve();
-  return react("breakaway", decorate({ breakaway: breakawayFigure(app.frame, app.state,
-    app.sim, app.state.lugre ? app.lugre : null) }, ["breakaway"]).breakaway);
+  return showPlot("breakaway", pageFigures(app.frame, app.state, ["breakaway"]).breakaway);
 }
 
 function showServerError(error) {
@@ -458,16 +462,22 @@ function hideServerError() {
 // simulation (debounced, abortable, redraws the break-away plot only)
 // ---------------------------------------------------------------------------------
 
-function simRates() {
-  return app.frame ? app.frame.phase.curves.slice(0, -1).map((curve) => curve.k) : [];
+/** The force rates the simulation runs: the phase family's, those of `frame`. */
+function simRates(frame = app.frame) {
+  return frame ? frame.phase.curves.slice(0, -1).map((curve) => curve.k) : [];
 }
 
-function simKey() {
-  return JSON.stringify(simulateBody(app.state, simRates()));
+function simKey(state = app.state, frame = app.frame) {
+  return JSON.stringify(simulateBody(state, simRates(frame)));
+}
+
+/** True when the simulated points are for another state than `state`. */
+function simStale(state, frame) {
+  return app.sim.key !== simKey(state, frame);
 }
 
 function markSimStale() {
-  if (app.sim) app.sim.stale = app.sim.key !== simKey();
+  if (app.sim) app.sim.stale = simStale(app.state, app.frame);
 }
 
 function cancelSim() {
@@ -718,6 +728,7 @@ async function init() {
   const response = await getJSON("/api/presets");
   setParams(response.parameters);
   buildControls(document);
+  addAheadGraphs(PLOT_IDS);
   wireTabs();
   initDataPanel({ applyParams: applyFitted });
   app.defaults = response.defaults;
@@ -762,11 +773,22 @@ window.breakaway = {
   state: () => JSON.parse(JSON.stringify(app.state)),
   /** Completed redraws, and the last one's duration (input to plots drawn) [ms]. */
   frames: () => app.frames,
-  reacts: () => app.reacts,
   /** Frames that a key press found asked for ahead; `prefetch(false)` stops asking
    *  ahead (the benchmark's alternative). */
   prefetchHits: () => app.prefetchHits,
   prefetch: (on) => { app.prefetchOn = Boolean(on); app.ahead = null; },
+  /** `drawAhead(false)`: the frame is asked for ahead but not drawn ahead. */
+  drawAhead: (on) => { app.drawAheadOn = Boolean(on); },
+  /** Plotly calls on shown graphs, graphs drawn ahead, and key presses that found their
+   *  plot drawn ahead (one count per plot). */
+  surfaces: () => ({ ...surfaceStats }),
+  /** True once the next arrow step's four plots are drawn (ahead, or already shown). */
+  aheadDrawn: () => {
+    const { ahead } = app;
+    if (!ahead?.frame) return false;
+    const figs = pageFigures(ahead.frame, ahead.state);
+    return PLOT_IDS.every((id) => holds(id, styled(figs[id], pageStyle())));
+  },
   lastRedrawMs: () => app.lastRedrawMs,
   /** Resolves once the data panel runs no fit; the finished fit's report (or null). */
   fitReady,

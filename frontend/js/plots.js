@@ -245,14 +245,15 @@ export function breakawayFigure(frame, state, sim = null, lugre = null) {
   return { data, layout };
 }
 
-/** All four figures of one redraw, keyed by plot id. */
-export function figures(frame, state, sim, lugre) {
-  return {
-    stribeck: stribeckFigure(frame),
-    hysteresis: hysteresisFigure(frame, state),
-    phase: phaseFigure(frame, state),
-    breakaway: breakawayFigure(frame, state, sim, lugre),
+/** The figures of one redraw (all four, or those in `ids`), keyed by plot id. */
+export function figures(frame, state, sim, lugre, ids = PLOT_IDS) {
+  const build = {
+    stribeck: () => stribeckFigure(frame),
+    hysteresis: () => hysteresisFigure(frame, state),
+    phase: () => phaseFigure(frame, state),
+    breakaway: () => breakawayFigure(frame, state, sim, lugre),
   };
+  return Object.fromEntries(ids.map((id) => [id, build[id]()]));
 }
 
 function fmt(value) {

@@ -9,6 +9,15 @@ from breakaway.presliding import hysteresis_loop
 from breakaway.quasistatic import breakaway_force, presliding_velocity
 from breakaway.steady import steady_state_force
 
+def until(page, predicate: str, seconds: float = 15.0) -> None:
+    """Poll ``predicate`` (the page's CSP forbids wait_for_function's eval)."""
+    for _ in range(int(seconds / 0.05)):
+        if page.evaluate(predicate):
+            return
+        page.wait_for_timeout(50)
+    raise AssertionError(f"not true within {seconds} s: {predicate}")
+
+
 def wait_ready(page, signal: str = "ready") -> None:
     """Wait until the page's ``window.breakaway.<signal>()`` promise resolves.
 

@@ -9,6 +9,8 @@ from axe_playwright_python.sync_playwright import Axe
 
 from breakaway.identify.samples import SAMPLES
 
+from browser_model import until
+
 pytestmark = pytest.mark.browser
 
 SERIOUS = {"serious", "critical"}
@@ -59,3 +61,16 @@ def test_the_sliders_answer_the_keyboard_and_show_focus(explorer):
         "() => { const s = getComputedStyle(document.activeElement);"
         " return [s.outlineStyle, parseFloat(s.outlineWidth)]; }")
     assert outline[0] != "none" and outline[1] >= 2
+
+
+def test_axe_finds_nothing_serious_with_plots_drawn_ahead(explorer):
+    # an arrow step leaves the next step's plots drawn in hidden graphs under the shown
+    explorer.open("?sim=0")
+    page = explorer.page
+    slider = page.get_by_label("σ (sigma) [N·s/m] slider", exact=True)
+    slider.focus()
+    slider.press("ArrowRight")
+    explorer.ready()
+    until(page, "window.breakaway.aheadDrawn()")
+    assert page.locator(".plot-ahead .main-svg").count() > 0
+    assert serious_violations(page) == []

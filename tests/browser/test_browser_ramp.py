@@ -9,6 +9,8 @@ import urllib.request
 
 import pytest
 
+from browser_model import until
+
 pytestmark = pytest.mark.browser
 
 
@@ -30,15 +32,6 @@ def body_of(state: dict) -> dict:
 
 def numbers(text: str) -> list[float]:
     return [float(n) for n in re.findall(r"-?\d+(?:\.\d+)?(?:e-?\d+)?", text.replace("−", "-"))]
-
-
-def until(explorer, predicate: str, seconds: float = 15.0) -> None:
-    """Poll ``predicate`` (the page's CSP forbids wait_for_function's eval)."""
-    for _ in range(int(seconds / 0.05)):
-        if explorer.page.evaluate(predicate):
-            return
-        explorer.page.wait_for_timeout(50)
-    raise AssertionError(f"not true within {seconds} s: {predicate}")
 
 
 def set_box(explorer, label: str, value: str) -> None:
@@ -85,9 +78,9 @@ def test_play_moves_a_cursor_and_the_glossary_explains_the_equations(explorer):
     play = explorer.page.get_by_role("button", name="Play")
     play.click()
     assert explorer.page.locator("#ramp-play").get_attribute("aria-pressed") == "true"
-    until(explorer, "() => document.getElementById('plot-ramp').data"
+    until(explorer.page, "() => document.getElementById('plot-ramp').data"
                     ".some(t => t.name === 'time cursor')")
-    until(explorer, "() => document.getElementById('ramp-play')"
+    until(explorer.page, "() => document.getElementById('ramp-play')"
                     ".getAttribute('aria-pressed') === 'false'")
     glossary = explorer.page.locator("#glossary")
     glossary.locator("summary").click()

@@ -12,7 +12,7 @@ import pytest
 from breakaway.dynamics import simulate_breakaway
 from breakaway.params import DEFAULTS, FIG3_RATES
 
-from browser_model import assert_plots_match_model, values
+from browser_model import assert_plots_match_model, until, values
 
 pytestmark = pytest.mark.browser
 
@@ -223,3 +223,90 @@ def test_arrow_steps_of_the_mass_ask_for_no_frame(explorer):
     page.wait_for_timeout(300)
     assert explorer.state()["m"] > DEFAULTS["m"]
     assert sent == []
+
+
+def surfaces(page) -> dict:
+    return page.evaluate("window.breakaway.surfaces()")
+
+
+def step_and_wait_drawn_ahead(explorer, slider, key="ArrowRight") -> None:
+    slider.press(key)
+    explorer.ready()
+    until(explorer.page, "window.breakaway.aheadDrawn()")
+
+
+def test_an_arrow_step_shows_the_plots_drawn_ahead_and_they_are_the_models(explorer):
+    explorer.open("?sim=0")
+    page = explorer.page
+    slider = page.get_by_label("Fc [N] slider", exact=True)
+    slider.focus()
+    step_and_wait_drawn_ahead(explorer, slider)
+    before = surfaces(page)
+    assert before["drawnAhead"] >= 4  # Fc changes all four plots
+    slider.press("ArrowRight")
+    explorer.ready()
+    after = surfaces(page)
+    assert after["swaps"] == before["swaps"] + 4
+    state = explorer.state()
+    assert_plots_match_model(explorer, state)
+    # one graph of each plot is seen and named; the other is hidden from eyes and
+    # assistive technology alike
+    for plot in PLOTS:
+        shown = page.locator(f"#plot-{plot}")
+        assert shown.is_visible() and shown.get_attribute("aria-label")
+        assert shown.get_attribute("class").split()[0] == "plot"
+        hidden = page.locator(f"#plot-{plot}-ahead")
+        assert not hidden.is_visible()
+        assert hidden.get_attribute("aria-hidden") == "true"
+        assert hidden.get_attribute("aria-label") is None
+    # turning back: the step drawn ahead (further right) is not the one shown
+    until(page, "window.breakaway.aheadDrawn()")
+    swaps = surfaces(page)["swaps"]
+    slider.press("ArrowLeft")
+    explorer.ready()
+    assert surfaces(page)["swaps"] == swaps
+    assert_plots_match_model(explorer)
+
+
+def test_a_zoomed_plot_keeps_its_zoom_and_hidden_traces_and_is_drawn_not_swapped(explorer):
+    explorer.open("?sim=0")
+    page = explorer.page
+    slider = page.get_by_label("Fs [N] slider", exact=True)
+    slider.focus()
+    step_and_wait_drawn_ahead(explorer, slider)
+    # what a drag on the Stribeck plot does, and a click on the loop's first legend entry
+    page.evaluate("Plotly.relayout('plot-stribeck', {'xaxis.range': [-0.5, 0.5]})")
+    page.locator("#plot-hysteresis .legendtoggle").first.click()
+    # Plotly waits out a double click before it hides the trace
+    until(page, "document.getElementById('plot-hysteresis').data[0].visible === 'legendonly'")
+    swaps = surfaces(page)["swaps"]
+    slider.press("ArrowRight")
+    explorer.ready()
+    assert page.evaluate("document.getElementById('plot-stribeck').layout.xaxis.range") \
+        == [-0.5, 0.5]
+    assert page.evaluate("document.getElementById('plot-hysteresis').data[0].visible") \
+        == "legendonly"
+    assert surfaces(page)["swaps"] == swaps + 2  # the other two were drawn ahead
+    assert_plots_match_model(explorer, explorer.state())
+
+
+def test_a_held_arrow_key_ends_on_the_models_plots(explorer):
+    # key repeat, 30 ms apart: presses land while frames are asked for and plots drawn
+    # ahead; whatever was in flight, the page ends on the last state, as the model says
+    explorer.open("?sim=0")
+    page = explorer.page
+    slider = page.get_by_label("δ (delta) slider", exact=True)
+    slider.focus()
+    for i in range(24):
+        page.keyboard.press("ArrowRight" if i < 16 else "ArrowLeft")
+        page.wait_for_timeout(30)
+    explorer.ready()
+    state = explorer.state()
+    assert state["delta"] != DEFAULTS["delta"]
+    assert float(page.get_by_label("δ (delta)", exact=True).input_value()) == state["delta"]
+    assert_plots_match_model(explorer, state)
+    # and what is drawn ahead then is the step after it, not a step already left behind
+    until(page, "window.breakaway.aheadDrawn()")
+    slider.press("ArrowLeft")
+    explorer.ready()
+    assert_plots_match_model(explorer, explorer.state())
