@@ -1,8 +1,9 @@
 // The explorer page. One render path:
 //   state → validate (MODEL.md §1) → one POST /api/explore (the previous one aborted)
-//         → pure figure builders (plots.js) → Plotly.react on the four plots.
-// The ramp simulation runs beside it, debounced and abortable, and only ever redraws the
-// break-away plot, so it never holds up a slider.
+//         → pure figure builders (plots.js) → the plots whose figure changed
+//         (surfaces.js: Plotly.react, or the graph drawn ahead for this arrow step).
+// The simulations run beside it, debounced and abortable, and redraw only the plots
+// that show them, so they never hold up a slider.
 //
 // For tests and scripts: #plots carries data-ready="true|false" and data-frame=<count>;
 // window.breakaway.ready() resolves once the plots show the current state (or its
@@ -332,7 +333,7 @@ function showTourStep(index) {
 function withSimulatedPath(figure, state) {
   if (!app.ramp) return figure;
   const trace = simulationPhaseTrace(app.ramp, app.cursor);
-  if (app.rampKey !== JSON.stringify(rampBody(state))) trace.opacity = 0.35;
+  if (app.rampKey !== rampKeyOf(state)) trace.opacity = 0.35;
   return { ...figure, data: [...figure.data, trace] };
 }
 
@@ -341,8 +342,8 @@ function withSimulatedPath(figure, state) {
 // in the phase plot, and the sentence that explains the numbers
 // ---------------------------------------------------------------------------------
 
-function rampKeyNow() {
-  return JSON.stringify(rampBody(app.state));
+function rampKeyOf(state = app.state) {
+  return JSON.stringify(rampBody(state));
 }
 
 function rampBusy() {
@@ -359,7 +360,7 @@ function cancelRamp() {
 
 function scheduleRamp() {
   if (!app.frame) return;
-  if (app.ramp && app.rampKey === rampKeyNow()) {
+  if (app.ramp && app.rampKey === rampKeyOf()) {
     drawRamp();
     return;
   }
@@ -372,7 +373,7 @@ async function runRamp() {
   if (app.rampController) app.rampController.abort();
   const controller = new AbortController();
   app.rampController = controller;
-  const key = rampKeyNow();
+  const key = rampKeyOf();
   try {
     const result = await postJSON("/api/ramp", rampBody(app.state), controller.signal);
     if (controller !== app.rampController) return;
@@ -779,8 +780,8 @@ window.breakaway = {
   prefetch: (on) => { app.prefetchOn = Boolean(on); app.ahead = null; },
   /** `drawAhead(false)`: the frame is asked for ahead but not drawn ahead. */
   drawAhead: (on) => { app.drawAheadOn = Boolean(on); },
-  /** Plotly calls on shown graphs, graphs drawn ahead, and key presses that found their
-   *  plot drawn ahead (one count per plot). */
+  /** Counts per plot: Plotly calls on the shown graphs (`reacts`), plots shown from the
+   *  graph drawn ahead (`swaps`), graphs drawn ahead (`drawnAhead`). */
   surfaces: () => ({ ...surfaceStats }),
   /** True once the next arrow step's four plots are drawn (ahead, or already shown). */
   aheadDrawn: () => {
