@@ -2,6 +2,9 @@
 
 1. Prepare the data (rows the model cannot use are dropped, with a warning), fit the
    base model, and estimate the noise floor without any model (:mod:`.noise`).
+   Isolated spikes of the force are set aside and the base model fitted again
+   (:mod:`.outliers`, with a warning); spikes that only the final model's residual
+   shows (the base model's misfit hid them) send the data through once more.
 2. While the residual is not white: fit every candidate effect that the data can show
    (all parameters refitted, starts read off the residual), and accept the lowest-BIC
    one that passes every gate — the BIC falls by at least :data:`MIN_BIC_DROP`, the fit
@@ -23,7 +26,7 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 from threadpoolctl import threadpool_limits
@@ -34,6 +37,7 @@ from .effects import (EFFECTS, MIN_RIPPLE_PERIODS, availability, long_wavelength
 from .fitting import FitError, FitResult, best_base_starts, fit_model, fit_with_effect, refit
 from .models import problem_for
 from .noise import NoiseFloor, command_floor, estimate
+from .outliers import SPIKE_SIGMAS, despiked_force, spike_rows
 from .residuals import is_white, residual_structure
 
 #: A BIC drop of 10 is "very strong" evidence (Kass & Raftery 1995).
@@ -443,18 +447,53 @@ def diagnose(data: Dataset, progress=None) -> Diagnosis:
         return _diagnose(data, progress)
 
 
-def _diagnose(data: Dataset, progress) -> Diagnosis:
+@dataclass
+class SetAside:
+    """The spikes set aside so far (:mod:`.outliers`), for the report's warning."""
+
+    rows: int  # rows of the data before any was set aside
+    base_rmse: float  # the base model's RMSE with the spikes in [N]
+    lines: list = field(default_factory=list)
+    spreads: list = field(default_factory=list)
+
+    def add(self, data: Dataset, spikes, scale) -> None:
+        self.lines.extend(int(line) for line in data.lines[spikes])
+        self.spreads.extend(float(value) for value in scale[spikes])
+
+    def warning(self, kind: str) -> dict:
+        count = len(self.lines)
+        lines = ", ".join(str(line) for line in sorted(self.lines)[:5])
+        more = ", …" if count > 5 else ""
+        done = ("their F was replaced by the median of their neighbours'"
+                if kind == "timeseries" else "they were left out")
+        return warning("outliers", "F_ba" if kind == "breakaway" else "F", (
+            f"{count} of {self.rows} rows (lines {lines}{more}) are isolated spikes, more "
+            f"than {SPIKE_SIGMAS:g} times the residual's local spread "
+            f"({float(np.median(self.spreads)):.3g} N) from their neighbours: glitches of "
+            f"the measurement, not friction; {done}, and the base model's RMSE with them "
+            f"was {self.base_rmse:.4g} N"))
+
+
+def _diagnose(data: Dataset, progress, set_aside: SetAside | None = None,
+              carried: list | None = None) -> Diagnosis:
+    """One pass; a second (given ``set_aside`` and the first pass's data warnings,
+    ``carried``) when the final residual shows spikes that the base one did not."""
     started = time.perf_counter()
     report = progress or (lambda fraction, message: None)
     report(0.0, "fitting the base model")
-    data, warnings = prepare(data)
+    data, prepared = prepare(data)
+    prepared = [*(carried or []), *prepared]
     screened = data.kind == "timeseries" and data.n > 1.5 * SCREEN_ROWS
-    full_problem = problem_for(data)
-    screen = screening_blocks(data, full_problem.d) if screened else data
-    screen_base = base = fit_model(screen)
+    full_problem, screen, screen_base, base = _base_fits(data, screened)
     noise = estimate(full_problem)
-    if screened:
-        base = refit(data, screen_base, max_nfev=FULL_REFIT_EVALUATIONS)
+    spikes, scale = spike_rows(base.problem, base.residual(), noise.value)
+    if spikes.any():
+        set_aside = set_aside or SetAside(data.n, base.rmse)
+        set_aside.add(data, spikes, scale)
+        data = without_spikes(data, spikes)
+        full_problem, screen, screen_base, base = _base_fits(data, screened, screen_base)
+        noise = estimate(full_problem)
+    warnings = list(prepared)
     command = command_floor(full_problem, noise, base.residual())
     if command is not None:
         noise = command  # the residual's differences already carry the noise of x
@@ -487,16 +526,46 @@ def _diagnose(data: Dataset, progress) -> Diagnosis:
                       s.evidence, s.heldout) for s in steps]
     else:
         final = current
+    if carried is None and final.effects:
+        late, scale = spike_rows(final.problem, final.residual(), noise.value)
+        if late.any():
+            set_aside = set_aside or SetAside(data.n, base.rmse)
+            set_aside.add(data, late, scale)
+            return _diagnose(without_spikes(data, late), progress, set_aside,
+                             carried=prepared)
     for name in final.effects:
         loop.verdicts[name] = Candidate(final.rmse, final.bic, current_heldout, True, None)
     white = is_white(final.residual(), final.problem, noise.value)
     unexplained = (not white) and final.rmse > UNEXPLAINED_RATIO * noise.value
     structure = residual_structure(final.residual(), final.problem, white)
     warnings += loop.warnings + _fit_warnings(final) + _travel_warnings(final, structure)
+    if set_aside is not None:
+        warnings.insert(len(prepared), set_aside.warning(data.kind))
     report(1.0, "done")
     return Diagnosis(data, noise, base, final, steps, heldout_before, current_heldout,
                      white, unexplained, loop.verdicts, warnings, structure,
                      screen.n if screened else 0, time.perf_counter() - started)
+
+
+def _base_fits(data: Dataset, screened: bool, start: FitResult | None = None):
+    """The problem on every row, the rows screened, and the base fits on both (from
+    ``start``'s parameters when given)."""
+    full_problem = problem_for(data)
+    screen = screening_blocks(data, full_problem.d) if screened else data
+    screen_base = base = fit_model(screen, starts=None if start is None else [start.params])
+    if screened:
+        base = refit(data, screen_base, max_nfev=FULL_REFIT_EVALUATIONS)
+    return full_problem, screen, screen_base, base
+
+
+def without_spikes(data: Dataset, spikes) -> Dataset:
+    """``data`` with its spikes set aside: a time series keeps every row (its presliding
+    state runs along x) with each spike's F replaced by the median of its neighbours';
+    the other kinds' rows are separate measurements, and a spike's row is left out."""
+    if data.kind != "timeseries":
+        return subset(data, np.flatnonzero(~spikes))
+    return replace(data, columns={**data.columns,
+                                  "F": despiked_force(data.columns["F"], spikes)})
 
 
 def _evaluate(data, fit):
