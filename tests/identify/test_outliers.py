@@ -163,3 +163,21 @@ def test_clean_data_have_no_outliers(kind, effects):
     result = report(diagnose(data))
     assert "outliers" not in [w["code"] for w in result["warnings"]]
     assert result["n"] == data.n
+
+
+def test_a_residual_spike_under_a_smooth_force_is_the_models_not_a_glitch_of_f():
+    # in a time series the prediction runs through x and t: a glitch there spikes the
+    # residual while the measured force stays smooth, and replacing F would mend nothing
+    rng = np.random.default_rng(6)
+    n = 5_000
+    force = 10.0 + 0.001 * np.arange(n) + 0.05 * rng.standard_normal(n)
+    prediction = force - 0.05 * rng.standard_normal(n)
+    prediction[2500] -= 2.0  # the model's spike
+    residual = force - prediction
+    rows = [np.arange(n)]
+    assert np.flatnonzero(find_spikes(residual, rows)[0]).tolist() == [2500]
+    assert not find_spikes(residual, rows, measured=force)[0].any()
+    spiky = force.copy()
+    spiky[1200] += 2.0  # the force's own spike
+    found = find_spikes(spiky - prediction, rows, measured=spiky)[0]
+    assert np.flatnonzero(found).tolist() == [1200]

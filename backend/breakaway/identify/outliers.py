@@ -66,7 +66,23 @@ def running_median(values, half_window: int = HALF_WINDOW, neighbours_only: bool
     return np.nanmedian(windows, axis=1)
 
 
-def find_spikes(residual, groups, floor: float = 0.0):
+def _stands_out(values, unit, sigmas: float):
+    """Where each value lies more than ``sigmas`` ``unit`` from the median of the
+    :data:`HALF_WINDOW` values before it and, on the same side, from that of the ones
+    after it (the first and last :data:`HALF_WINDOW` have no full side: never)."""
+    h = HALF_WINDOW
+    sides = np.median(np.lib.stride_tricks.sliding_window_view(values, h), axis=1)
+    before = np.full(values.size, np.nan)
+    after = np.full(values.size, np.nan)
+    before[h:] = sides[:-1]
+    after[:-h] = sides[1:]
+    z_before = (values - before) / unit
+    z_after = (values - after) / unit
+    return (np.minimum(np.abs(z_before), np.abs(z_after)) > sigmas) \
+        & (np.sign(z_before) == np.sign(z_after))
+
+
+def find_spikes(residual, groups, floor: float = 0.0, measured=None):
     """Rows whose residual lies far from the running median of its neighbours'.
 
     Parameters
@@ -79,6 +95,10 @@ def find_spikes(residual, groups, floor: float = 0.0):
     floor : float
         The noise floor [N]; the robust scale is never taken below it (a quantised or
         noise-free force has a median deviation of zero).
+    measured : array_like, shape (n,), optional
+        The measured force [N]. When given, a spike of the residual must be one of the
+        force too (half as far out): a residual spike under a smooth force is the
+        model's, from a glitch of x or t, and replacing F would not mend it.
 
     Returns
     -------
@@ -102,17 +122,10 @@ def find_spikes(residual, groups, floor: float = 0.0):
         spread = _MAD_TO_STD * running_median(np.abs(deviation), SCALE_HALF_WINDOW)
         scale[rows] = np.maximum(spread, floor)
         unit = np.where(scale[rows] > 0, scale[rows], np.inf)
-        # the medians of the h rows before and of the h rows after (rows 0 … h−1 and
-        # the last h have no full side: they are not judged)
-        sides = np.median(np.lib.stride_tricks.sliding_window_view(r, h), axis=1)
-        before = np.full(r.size, np.nan)
-        after = np.full(r.size, np.nan)
-        before[h:] = sides[:-1]
-        after[:-h] = sides[1:]
-        z_before = (r - before) / unit
-        z_after = (r - after) / unit
-        far = (np.minimum(np.abs(z_before), np.abs(z_after)) > SPIKE_SIGMAS) \
-            & (np.sign(z_before) == np.sign(z_after))
+        far = _stands_out(r, unit, SPIKE_SIGMAS)
+        if measured is not None:
+            far &= _stands_out(np.asanyarray(measured, dtype=float)[rows], unit,
+                               SPIKE_SIGMAS / 2)
         ordinary = np.pad(np.abs(deviation) / unit <= NEIGHBOUR_SIGMAS, 1, constant_values=True)
         spikes[rows] = far & ordinary[:-2] & ordinary[2:]
     if np.count_nonzero(spikes) > max(1.0, MAX_SHARE * residual.size):
@@ -121,8 +134,13 @@ def find_spikes(residual, groups, floor: float = 0.0):
 
 
 def spike_rows(problem, residual, floor: float):
-    """:func:`find_spikes` along the kind's regressor (:func:`.noise.orderings`)."""
-    return find_spikes(residual, orderings(problem)[0], floor)
+    """:func:`find_spikes` along the kind's regressor (:func:`.noise.orderings`). In a
+    time series the measured force must spike too: its prediction runs through x and t,
+    whose glitches spike the residual under a smooth force. Steady and break-away rows
+    are separate measurements (their force moves too far from row to row to judge, and
+    the prediction has no kinematics)."""
+    measured = problem.measured if problem.kind == "timeseries" else None
+    return find_spikes(residual, orderings(problem)[0], floor, measured)
 
 
 def despiked_force(force, spikes, half_window: int = HALF_WINDOW):
