@@ -69,15 +69,20 @@ def running_median(values, half_window: int = HALF_WINDOW, neighbours_only: bool
 def _stands_out(values, unit, sigmas: float):
     """Where each value lies more than ``sigmas`` ``unit`` from the median of the
     :data:`HALF_WINDOW` values before it and, on the same side, from that of the ones
-    after it (the first and last :data:`HALF_WINDOW` have no full side: never)."""
+    after it (near an end, of those there are; the first and last value are judged
+    against their one side)."""
     h = HALF_WINDOW
-    sides = np.median(np.lib.stride_tricks.sliding_window_view(values, h), axis=1)
-    before = np.full(values.size, np.nan)
-    after = np.full(values.size, np.nan)
-    before[h:] = sides[:-1]
-    after[:-h] = sides[1:]
+    n = values.size
+    padded = np.pad(values, h, mode="constant", constant_values=np.nan)
+    windows = np.lib.stride_tricks.sliding_window_view(padded, h)
+    before = np.full(n, np.nan)
+    after = np.full(n, np.nan)
+    before[1:] = np.nanmedian(windows[1:n], axis=1)  # values[i−h : i]
+    after[:-1] = np.nanmedian(windows[h + 1:n + h], axis=1)  # values[i+1 : i+1+h]
     z_before = (values - before) / unit
     z_after = (values - after) / unit
+    z_before[0] = z_after[0]
+    z_after[-1] = z_before[-1]
     return (np.minimum(np.abs(z_before), np.abs(z_after)) > sigmas) \
         & (np.sign(z_before) == np.sign(z_after))
 
