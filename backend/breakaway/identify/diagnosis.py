@@ -38,7 +38,7 @@ from .fitting import FitError, FitResult, best_base_starts, fit_model, fit_with_
 from .models import problem_for
 from .noise import NoiseFloor, command_floor, estimate
 from .outliers import SPIKE_SIGMAS, despiked_force, spike_rows
-from .residuals import is_white, residual_structure
+from .residuals import is_white, lag_one_correlation, residual_structure
 
 #: A BIC drop of 10 is "very strong" evidence (Kass & Raftery 1995).
 MIN_BIC_DROP = 10.0
@@ -49,6 +49,14 @@ MIN_EXCESS_EXPLAINED = 0.25
 MIN_RMSE_GAIN = 0.01
 #: Structure is "clear" when the final RMSE exceeds the noise floor by this factor.
 UNEXPLAINED_RATIO = 1.3
+#: ... unless the residual is noise-like: successive residuals correlate less than this,
+#: and no variable explains more than :data:`NOISE_LIKE_SHARE` of it (noise whose
+#: spread changes: the floor, a median of differences, reads below its RMS).
+NOISE_LIKE_CORRELATION = 0.1
+NOISE_LIKE_SHARE = 0.05
+#: Noise is uneven when its RMS in one tenth of the rows (by some variable) is this many
+#: times that in another.
+UNEVEN_SPREAD = 1.5
 #: Time series longer than this are screened on a decimated copy of about this size.
 SCREEN_ROWS = 20_000
 #: Function evaluations (each with a finite-difference Jacobian) of a refit on every row
@@ -536,9 +544,12 @@ def _diagnose(data: Dataset, progress, set_aside: SetAside | None = None,
     for name in final.effects:
         loop.verdicts[name] = Candidate(final.rmse, final.bic, current_heldout, True, None)
     white = is_white(final.residual(), final.problem, noise.value)
-    unexplained = (not white) and final.rmse > UNEXPLAINED_RATIO * noise.value
     structure = residual_structure(final.residual(), final.problem, white)
-    warnings += loop.warnings + _fit_warnings(final) + _travel_warnings(final, structure)
+    floor_low = [] if white else _floor_low_warnings(final, noise.value, structure)
+    unexplained = (not white) and final.rmse > UNEXPLAINED_RATIO * noise.value \
+        and not floor_low
+    warnings += loop.warnings + _fit_warnings(final) + _travel_warnings(final, structure) \
+        + floor_low
     if set_aside is not None:
         warnings.insert(len(prepared), set_aside.warning(data.kind))
     report(1.0, "done")
@@ -652,6 +663,38 @@ def _fit_warnings(fit: FitResult) -> list[dict]:
             text = f"{name} = {value:.4g}{se_text} {_WHY[reason]}: the data do not determine it"
         out.append(warning("undetermined", name, text))
     return out
+
+
+def _floor_low_warnings(fit: FitResult, floor: float, structure: list[dict]) -> list[dict]:
+    """``floor-low`` when the residual exceeds the floor but is noise-like (see
+    :data:`NOISE_LIKE_CORRELATION`): the floor reads low, nothing is missing."""
+    if not fit.rmse > 1.2 * floor:
+        return []
+    correlation = lag_one_correlation(fit.residual(), fit.problem)
+    strongest = max((item["strength"] for item in structure), default=0.0)
+    if abs(correlation) >= NOISE_LIKE_CORRELATION or strongest >= NOISE_LIKE_SHARE:
+        return []
+    variables = fit.problem.variables()
+    along, ratio = max(((name, _spread_ratio(fit.residual(), values))
+                        for name, values in variables.items()),
+                       key=lambda item: item[1], default=(None, 1.0))
+    why = (f"its spread changes {ratio:.1f}-fold along {along}, and the floor (a median) "
+           "reads the quiet part" if ratio >= UNEVEN_SPREAD
+           else "its spread is even, so the floor itself reads low (a median of "
+           "differences, or a quantisation's q/√12, misses part of the noise)")
+    return [warning("floor-low", None, (
+        f"the residual is noise-like (successive values correlate {correlation:+.2f}, no "
+        f"variable explains {100 * NOISE_LIKE_SHARE:.0f} % of it) but its RMS, "
+        f"{fit.rmse:.3g}, is {fit.rmse / floor:.2f} times the noise floor: {why}; no "
+        "effect is missing"))]
+
+
+def _spread_ratio(residual, values, bins: int = 10) -> float:
+    """Largest over smallest RMS of the residual in equal-count bins of ``values``."""
+    order = np.argsort(values, kind="stable")
+    rms = [math.sqrt(float(np.mean(part**2))) for part in np.array_split(residual[order], bins)
+           if part.size]
+    return max(rms) / min(rms) if min(rms) > 0 else math.inf
 
 
 def _travel_warnings(fit: FitResult, structure: list[dict]) -> list[dict]:
