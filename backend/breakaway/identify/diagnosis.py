@@ -666,9 +666,10 @@ def _fit_warnings(fit: FitResult) -> list[dict]:
 
 
 def _floor_low_warnings(fit: FitResult, floor: float, structure: list[dict]) -> list[dict]:
-    """``floor-low`` when the residual exceeds the floor but is noise-like (see
-    :data:`NOISE_LIKE_CORRELATION`): the floor reads low, nothing is missing."""
-    if not fit.rmse > 1.2 * floor:
+    """``floor-low`` when the residual exceeds the floor as far as structure would
+    (:data:`UNEXPLAINED_RATIO`) but is noise-like (:data:`NOISE_LIKE_CORRELATION`): the
+    floor reads low, nothing is missing."""
+    if not fit.rmse > UNEXPLAINED_RATIO * floor:
         return []
     correlation = lag_one_correlation(fit.residual(), fit.problem)
     strongest = max((item["strength"] for item in structure), default=0.0)
@@ -689,8 +690,10 @@ def _floor_low_warnings(fit: FitResult, floor: float, structure: list[dict]) -> 
         "effect is missing"))]
 
 
-def _spread_ratio(residual, values, bins: int = 10) -> float:
-    """Largest over smallest RMS of the residual in equal-count bins of ``values``."""
+def _spread_ratio(residual, values) -> float:
+    """Largest over smallest RMS of the residual in up to 10 equal-count bins of
+    ``values``, of 50 rows or more (fewer rows would read chance as unevenness)."""
+    bins = int(np.clip(residual.size // 50, 1, 10))
     order = np.argsort(values, kind="stable")
     rms = [math.sqrt(float(np.mean(part**2))) for part in np.array_split(residual[order], bins)
            if part.size]
