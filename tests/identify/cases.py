@@ -9,7 +9,7 @@ import numpy as np
 
 from breakaway.identify.csvdata import Dataset
 from breakaway.identify.models import problem_for
-from breakaway.identify.synthetic import BASE_TRUTH, displacement_excitation
+from breakaway.identify.synthetic import BASE_TRUTH, displacement_excitation, effect_truth
 
 
 def dataset(kind, columns, meta=None) -> Dataset:
@@ -87,12 +87,17 @@ def encoder_record(seed=0, n=12_000, count=2e-6, F_noise=0.05):
     return dataset("timeseries", {"t": t, "x": counts * count, "F": F}), {"count": count}
 
 
-def force_command(seed=0, n=10_000, x_noise=2e-6):
-    """Force-controlled rig: F is the command (noise-free), the noise sits in x."""
+def force_command(seed=0, n=10_000, x_noise=2e-6, effect=None):
+    """Force-controlled rig: F is the command (noise-free), the noise sits in x; with
+    ``effect`` (a §7 name) in the force."""
     rng = np.random.default_rng(seed)
     t, x = displacement_excitation(rng, n)
-    truth = BASE_TRUTH["timeseries"]
-    F = _timeseries(x, t, truth, F_noise=0.0)
+    truth = dict(BASE_TRUTH["timeseries"])
+    effects = (effect,) if effect else ()
+    if effect:
+        skeleton = dataset("timeseries", {"t": t, "x": x, "F": np.zeros_like(t)})
+        truth.update(effect_truth("timeseries", effect, truth, problem_for(skeleton, effects)))
+    F = _timeseries(x, t, truth, effects, F_noise=0.0)
     x_measured = x + x_noise * rng.standard_normal(n)
     return dataset("timeseries", {"t": t, "x": x_measured, "F": F}), truth
 

@@ -113,9 +113,23 @@ def test_a_commanded_force_has_a_real_noise_floor(reports):
     assert "force-is-command" in codes(report, "F")
     assert report["noise_floor"] > 0.01  # the noise of x, seen through the model [N]
     assert report["effects"] == []
+    # the residual is that noise: no structure is claimed (the residual's differences,
+    # 0.06 N, under-read it 4-fold, and the report said "unexplained")
+    assert report["unexplained"] is False
+    assert report["error_after"] <= 1.3 * report["noise_floor"]
     for name in ("Fc", "Fs"):
         assert report["final"]["params"][name] == pytest.approx({"Fc": 10, "Fs": 15}[name], rel=0.05)
     assert_honest_uncertainties(report)
+
+
+@pytest.mark.parametrize("effect", ["asymmetry", "offset"])
+def test_an_effect_under_a_commanded_force_is_found_alone(reports, effect):
+    # x's noise through the model (a smoothed v) looks like a delay: with the floor
+    # under-read, `lag` was added on top of the effect and the report said "unexplained"
+    report, truth = reports("force_command", effect=effect, seed=5)
+    assert report["effects"] == [effect]
+    assert report["unexplained"] is False
+    assert report["error_after"] <= 1.3 * report["noise_floor"]
 
 
 def test_no_ripple_longer_than_the_travel_allows(reports):

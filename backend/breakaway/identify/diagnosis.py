@@ -503,10 +503,13 @@ def _diagnose(data: Dataset, progress, set_aside: SetAside | None = None,
         noise = estimate(full_problem)
     warnings = list(prepared)
     command = command_floor(full_problem, noise, base.residual())
+    from_x = base.problem.resolution_noise(base.params) if data.kind == "timeseries" else 0.0
     if command is not None:
-        noise = command  # the residual's differences already carry the noise of x
+        # the residual is the noise of x seen through the model; its differences
+        # under-read it where the model smooths x (v over a window)
+        noise = command.at_least_position_part(from_x)
     elif data.kind == "timeseries":
-        noise = noise.with_position_part(base.problem.resolution_noise(base.params))
+        noise = noise.with_position_part(from_x)
     warnings += _data_warnings(full_problem, noise)
     report(0.1, "screening candidate effects")
 
@@ -610,7 +613,8 @@ def _data_warnings(problem, noise: NoiseFloor) -> list[dict]:
             f"the force column is noise-free (differences estimate {noise.smooth_F:.3g} N): "
             f"it is a command and the measurement noise sits in x (std about "
             f"{getattr(problem, 'noise_x', 0.0):.3g}); the noise floor {noise.value:.4g} N is "
-            f"that of the base model's residual")))
+            f"the larger of the base model's residual differences and that noise of x run "
+            f"through the model ({noise.from_x:.3g} N)")))
     counts = problem.direction_counts()
     if counts is not None and problem.kind != "breakaway":
         pos, neg, total = counts

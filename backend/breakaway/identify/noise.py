@@ -48,6 +48,18 @@ class NoiseFloor:
     command: bool = False
     from_x: float = 0.0  # the part the resolution of x adds through the model [N]
 
+    def at_least_position_part(self, from_x: float) -> "NoiseFloor":
+        """The floor of a commanded force: the larger of this one (the residual's
+        differences, which under-read a residual correlated along t) and the force error
+        that the noise of x causes through the model, which is the whole residual when
+        the model is right."""
+        if not from_x > self.value:
+            return NoiseFloor(self.value, self.method, self.quantum_F, self.smooth_F,
+                              self.replicated_rows, self.command, from_x)
+        return NoiseFloor(from_x, "noise of x through the model (force is a command)",
+                          self.quantum_F, self.smooth_F, self.replicated_rows, self.command,
+                          from_x)
+
     def with_position_part(self, from_x: float) -> "NoiseFloor":
         """The floor with the force error that the resolution of x causes added in
         quadrature (an encoder's ±q/2, a noisy x's std, propagated by the model)."""

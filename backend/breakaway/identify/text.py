@@ -29,7 +29,7 @@ def format_report(report: dict, source: str | None = None) -> str:
     lines += [title, "=" * len(title), ""]
     lines.append(f"kind: {report['kind']}, {report['n']} rows")
     method = report.get("noise_method")
-    lines.append(f"noise floor (model-free): {report['noise_floor']:.4g} {N}"
+    lines.append(f"noise floor: {report['noise_floor']:.4g} {N}"
                  + (f", from {method}" if method else ""))
     lines.append("")
     base = report["base"]
