@@ -54,8 +54,8 @@ UNEXPLAINED_RATIO = 1.3
 #: spread changes: the floor, a median of differences, reads below its RMS).
 NOISE_LIKE_CORRELATION = 0.1
 NOISE_LIKE_SHARE = 0.05
-#: Noise is uneven when its RMS in one tenth of the rows (by some variable) is this many
-#: times that in another.
+#: Noise is uneven when its RMS in one bin of the rows by some variable (up to ten, of
+#: 50 rows or more) is this many times that in another.
 UNEVEN_SPREAD = 1.5
 #: Time series longer than this are screened on a decimated copy of about this size.
 SCREEN_ROWS = 20_000
