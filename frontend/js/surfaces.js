@@ -18,7 +18,7 @@ const surfaces = {}; // plot id -> {front, back, frontDrawn, backDrawn, backRead
 export const surfaceStats = { reacts: 0, swaps: 0, drawnAhead: 0 };
 
 /** Deep equality of figures; arrays element by element (they come fresh each frame). */
-export function sameFigure(a, b) {
+function sameFigure(a, b) {
   if (a === b) return true;
   if (typeof a !== "object" || typeof b !== "object" || a === null || b === null) {
     return Number.isNaN(a) && Number.isNaN(b);
