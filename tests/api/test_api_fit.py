@@ -4,12 +4,13 @@ from __future__ import annotations
 
 import time
 
+import numpy as np
 import pytest
 
 from fastapi.testclient import TestClient
 
 from breakaway.api.app import create_app
-from breakaway.identify.synthetic import make_dataset, to_csv
+from breakaway.identify.synthetic import make_dataset, to_csv, with_force
 from breakaway.settings import get_settings
 
 
@@ -31,6 +32,22 @@ def test_fit_reports_the_undeclared_effect(client):
     assert report["error_after"] < 0.07 < report["error_before"]
     assert report["final"]["params"]["F_offset"] == pytest.approx(0.6, rel=0.1)
     assert report["heldout"]["after"] < report["heldout"]["before"]
+
+
+def test_a_spike_in_the_upload_is_reported_by_its_line(client):
+    # a steady file whose row at line 40 (a header and a kind line come first) glitched
+    data, _ = make_dataset("steady", (), seed=2)
+    force = data.columns["F"].copy()
+    row = int(np.flatnonzero(data.lines == 40)[0])
+    force[row] += 3.0
+    response = client.post("/api/fit", files=_upload(to_csv(with_force(data, force)).encode()))
+    assert response.status_code == 200
+    report = response.json()
+    outliers = [w for w in report["warnings"] if w["code"] == "outliers"]
+    assert len(outliers) == 1 and outliers[0]["parameter"] == "F"
+    assert outliers[0]["message"].startswith(f"1 of {data.n} rows (lines 40)")
+    assert report["n"] == data.n - 1
+    assert report["effects"] == [] and report["unexplained"] is False
 
 
 def test_kind_form_field_overrides_detection(client):
