@@ -94,8 +94,18 @@ def test_the_noise_floor_bounds_the_scale_of_a_quantised_residual():
     residual[::101] = 0.5
     rows = [np.arange(residual.size)]
     assert not find_spikes(residual, rows, floor=0.0)[0].any()
-    assert find_spikes(residual, rows, floor=0.01)[0].sum() == 20
+    assert find_spikes(residual, rows, floor=0.01)[0].sum() == 19  # row 0 has one side
     assert not find_spikes(residual, rows, floor=0.5 / SPIKE_SIGMAS)[0].any()
+
+
+def test_a_ramp_that_ends_the_record_is_not_a_spike_but_one_row_in_is():
+    # the last row has neighbours on one side only: a steep ramp and a spike look alike
+    rng = np.random.default_rng(7)
+    residual = rng.standard_normal(40)
+    residual[-6:] += np.array([0.0, 10.0, 20.0, 30.0, 40.0, 50.0])
+    assert not find_spikes(residual, [np.arange(40)])[0].any()
+    residual[2] += 30.0
+    assert np.flatnonzero(find_spikes(residual, [np.arange(40)])[0]).tolist() == [2]
 
 
 def test_one_spike_in_a_short_record_is_found():

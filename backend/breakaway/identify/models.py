@@ -20,7 +20,7 @@ import numpy as np
 from scipy.ndimage import uniform_filter1d
 
 from ..presliding import _presliding_kernel
-from ..quasistatic import e12_velocity
+from ..quasistatic import e12_acceleration, e12_velocity
 from ..steady import stribeck_kernel
 from .csvdata import Dataset
 from .effects import BREAKAWAY_Z, EFFECTS, MIN_RATES, engaged_presliding, param_spec
@@ -375,7 +375,11 @@ class BreakawayProblem(Problem):
         self.distinct_rates = int(np.unique(self.k).size)
         force = _robust_scale(self.measured)
         rate = float(np.max(self.k))
+        # the acceleration an inertial term meets at break-away, at the highest rate: the
+        # scale of m_e's range (1 m/s² would make its range so wide that a significant
+        # m_e of 1e-8 kg read as sitting on the lower bound)
         self.scales = Scales(force, float(e12_velocity(rate, force, self.s, BREAKAWAY_Z)),
+                             accel=float(e12_acceleration(rate, force, self.s, BREAKAWAY_Z)),
                              dwell=float(np.max(self.dwell)), rate=rate)
         self.level_only = level_only
         if level_only:

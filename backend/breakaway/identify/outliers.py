@@ -69,8 +69,8 @@ def running_median(values, half_window: int = HALF_WINDOW, neighbours_only: bool
 def _stands_out(values, unit, sigmas: float):
     """Where each value lies more than ``sigmas`` ``unit`` from the median of the
     :data:`HALF_WINDOW` values before it and, on the same side, from that of the ones
-    after it (near an end, of those there are; the first and last value are judged
-    against their one side)."""
+    after it (near an end, of those there are; the first and last value, with one side
+    only, are never: there a ramp and a spike look alike)."""
     h = HALF_WINDOW
     n = values.size
     padded = np.pad(values, h, mode="constant", constant_values=np.nan)
@@ -81,10 +81,9 @@ def _stands_out(values, unit, sigmas: float):
     after[:-1] = np.nanmedian(windows[h + 1:n + h], axis=1)  # values[i+1 : i+1+h]
     z_before = (values - before) / unit
     z_after = (values - after) / unit
-    z_before[0] = z_after[0]
-    z_after[-1] = z_before[-1]
-    return (np.minimum(np.abs(z_before), np.abs(z_after)) > sigmas) \
-        & (np.sign(z_before) == np.sign(z_after))
+    with np.errstate(invalid="ignore"):  # NaN at the two ends compares False
+        return (np.minimum(np.abs(z_before), np.abs(z_after)) > sigmas) \
+            & (np.sign(z_before) == np.sign(z_after))
 
 
 def find_spikes(residual, groups, floor: float = 0.0, measured=None):
