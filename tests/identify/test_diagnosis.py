@@ -135,3 +135,14 @@ def test_three_effects_are_all_found(kind, effects):
     assert sorted(result["effects"]) == sorted(effects)
     assert result["residual_white"] is True
     assert result["error_after"] <= 1.3 * NOISE[kind]
+
+
+@pytest.mark.parametrize("seed", [301, 305])
+def test_break_away_inertia_is_determined_not_on_its_bound(seed):
+    # m_e's range follows the acceleration at break-away (~1e6 m/s² here): with a 1 m/s²
+    # scale every m_e read as sitting on the lower bound of a range 1e7 times too wide
+    result, truth = _report("breakaway", ("inertia",), seed=seed)
+    assert result["effects"] == ["inertia"]
+    assert result["final"]["determined"]["m_e"] is True
+    assert result["final"]["params"]["m_e"] == pytest.approx(truth["m_e"], rel=0.1)
+    assert not [w for w in result["warnings"] if w["code"] == "at-bound"]
