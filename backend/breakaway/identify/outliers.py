@@ -9,9 +9,10 @@ deviations (taken over the rows around it) from the median of the rows before it
 on the same side, from the median of the rows after it (a step or a corner agrees with
 one side; a ramp lies above one and below the other), while the rows next to it are
 ordinary (a peak some rows wide is a feature, not a glitch). Medians are not pulled by
-a spike among the rows they take. Left in, a few spikes inflate the RMSE,
-the BIC and the residual's low-frequency power, and the report would say that structure
-is left where there is none.
+a spike among the rows they take. In a time series the measured force must stand out
+too: a residual spike under a smooth force is the model's (a glitch of x or t). Left
+in, a few spikes inflate the RMSE, the BIC and the residual's low-frequency power, and
+the report would say that structure is left where there is none.
 
 A time series keeps every row (the presliding state runs along x); a spike's F is
 replaced by the median of its neighbours' F. Rows of a steady or break-away file are
