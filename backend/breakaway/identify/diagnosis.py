@@ -675,13 +675,13 @@ def _floor_low_warnings(fit: FitResult, floor: float, structure: list[dict]) -> 
     floor reads low, nothing is missing."""
     if not fit.rmse > UNEXPLAINED_RATIO * floor:
         return []
-    correlation = lag_one_correlation(fit.residual(), fit.problem)
+    residual = fit.residual()
+    correlation = lag_one_correlation(residual, fit.problem)
     strongest = max((item["strength"] for item in structure), default=0.0)
     if abs(correlation) >= NOISE_LIKE_CORRELATION or strongest >= NOISE_LIKE_SHARE:
         return []
-    variables = fit.problem.variables()
-    along, ratio = max(((name, _spread_ratio(fit.residual(), values))
-                        for name, values in variables.items()),
+    along, ratio = max(((name, _spread_ratio(residual, values))
+                        for name, values in fit.problem.variables().items()),
                        key=lambda item: item[1], default=(None, 1.0))
     why = (f"its spread changes {ratio:.1f}-fold along {along}, and the floor (a median) "
            "reads the quiet part" if ratio >= UNEVEN_SPREAD

@@ -30,6 +30,7 @@ from scipy.signal import lombscargle
 
 from ..presliding import shape_scalar
 from ..quasistatic import e12_acceleration, e12_velocity
+from .residuals import correlation
 
 #: The break-away kind's fixed reading of E13 (MODEL.md §6): F̂ = avg at z* = 0.95.
 BREAKAWAY_Z = 0.95
@@ -104,13 +105,6 @@ def unit_of(unit: str, rotary: bool) -> str:
 # ---------------------------------------------------------------------------------
 # small helpers shared by the effects
 # ---------------------------------------------------------------------------------
-
-
-def _corr(a, b) -> float:
-    a = a - a.mean()
-    b = b - b.mean()
-    den = math.sqrt(float(np.dot(a, a) * np.dot(b, b)))
-    return float(np.dot(a, b) / den) if den > 0 else 0.0
 
 
 def _project(r, basis) -> float:
@@ -220,7 +214,7 @@ class Viscous(Effect):
 
     def signature(self, pb, r, params):
         sliding, v, d = pb.sliding_rows(), pb.regressor_speed(), pb.signed_direction()
-        c = _corr(r[sliding] * d[sliding], np.abs(v[sliding]))
+        c = correlation(r[sliding] * d[sliding], np.abs(v[sliding]))
         what = "k" if pb.kind == "breakaway" else "|v| in sliding"
         return f"the residual grows with {what} in the direction of motion (r = {c:.2f})"
 
@@ -304,7 +298,7 @@ class Drift(Effect):
 
     def signature(self, pb, r, params):
         sliding, d = pb.sliding_rows(), pb.signed_direction()
-        c = _corr(r[sliding] * d[sliding], pb.t[sliding])
+        c = correlation(r[sliding] * d[sliding], pb.t[sliding])
         return f"the sliding-level error changes steadily with time (r = {c:.2f} against t)"
 
 
@@ -332,8 +326,9 @@ class Inertia(Effect):
 
     def signature(self, pb, r, params):
         if pb.kind == "breakaway":
-            return f"the residual grows with k² like an inertial term (r = {_corr(r, pb.k**2):.2f})"
-        return f"the residual follows the acceleration a = dv/dt (r = {_corr(r, pb.a):.2f})"
+            c = correlation(r, pb.k**2)
+            return f"the residual grows with k² like an inertial term (r = {c:.2f})"
+        return f"the residual follows the acceleration a = dv/dt (r = {correlation(r, pb.a):.2f})"
 
 
 class Ripple(Effect):
@@ -389,7 +384,7 @@ class Ripple(Effect):
         if lam is None:
             return "the residual is periodic in x"
         phase = 2 * np.pi * pb.x / lam
-        c = math.hypot(_corr(r, np.sin(phase)), _corr(r, np.cos(phase)))
+        c = math.hypot(correlation(r, np.sin(phase)), correlation(r, np.cos(phase)))
         return (f"the residual is periodic in x with wavelength {_fmt(lam)} m "
                 f"(correlation {c:.2f} with a sinusoid of x)")
 
@@ -441,7 +436,7 @@ class Lag(Effect):
 
     def signature(self, pb, r, params):
         sliding, d = pb.sliding_rows(), pb.signed_direction()
-        c = _corr(r[sliding] * d[sliding], pb.a[sliding] * d[sliding])
+        c = correlation(r[sliding] * d[sliding], pb.a[sliding] * d[sliding])
         return (f"in sliding the error depends on whether the speed rises or falls "
                 f"(r = {c:.2f} against the acceleration along the motion): F–v loops open")
 
@@ -565,7 +560,7 @@ class Dwell(Effect):
         return [{"zeta": z, "tau_d": scale * f} for z in (0.1, 0.5) for f in (0.1, 1.0, 10.0)]
 
     def signature(self, pb, r, params):
-        c = _corr(r, np.log1p(pb.dwell))
+        c = correlation(r, np.log1p(pb.dwell))
         return f"the break-away force rises with the dwell time (r = {c:.2f} against ln(1 + dwell))"
 
 
@@ -587,7 +582,7 @@ class Detection(Effect):
 
     def signature(self, pb, r, params):
         return (f"the break-away force rises linearly with the rate k, against E13's fall "
-                f"(r = {_corr(r, pb.k):.2f})")
+                f"(r = {correlation(r, pb.k):.2f})")
 
 
 def viscous_equivalent_of_detection(tau_det, s, F_hat):

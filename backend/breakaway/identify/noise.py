@@ -15,7 +15,7 @@
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from math import comb
 
 import numpy as np
@@ -54,20 +54,17 @@ class NoiseFloor:
         that the noise of x causes through the model, which is the whole residual when
         the model is right."""
         if not from_x > self.value:
-            return NoiseFloor(self.value, self.method, self.quantum_F, self.smooth_F,
-                              self.replicated_rows, self.command, from_x)
-        return NoiseFloor(from_x, "noise of x through the model (force is a command)",
-                          self.quantum_F, self.smooth_F, self.replicated_rows, self.command,
-                          from_x)
+            return replace(self, from_x=from_x)
+        return replace(self, value=from_x, from_x=from_x,
+                       method="noise of x through the model (force is a command)")
 
     def with_position_part(self, from_x: float) -> "NoiseFloor":
         """The floor with the force error that the resolution of x causes added in
         quadrature (an encoder's ±q/2, a noisy x's std, propagated by the model)."""
         if not from_x > 0:
             return self
-        value = math.sqrt(self.value**2 + from_x**2)
-        return NoiseFloor(value, self.method + " + resolution of x", self.quantum_F,
-                          self.smooth_F, self.replicated_rows, self.command, from_x)
+        return replace(self, value=math.sqrt(self.value**2 + from_x**2), from_x=from_x,
+                       method=self.method + " + resolution of x")
 
 
 def _replicate_sigma(F, keys, nuisance=None):

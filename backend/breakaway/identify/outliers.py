@@ -117,6 +117,8 @@ def find_spikes(residual, groups, floor: float = 0.0, measured=None):
         judge).
     """
     residual = np.asanyarray(residual, dtype=float)
+    if measured is not None:
+        measured = np.asanyarray(measured, dtype=float)
     scale = np.zeros_like(residual)
     spikes = np.zeros(residual.size, dtype=bool)
     h = HALF_WINDOW
@@ -127,14 +129,13 @@ def find_spikes(residual, groups, floor: float = 0.0, measured=None):
         deviation = r - running_median(r, neighbours_only=True)
         # scipy's filter: a running median over 201 rows in numpy takes seconds on a
         # long record; the ends reflect the rows there are
-        spread = _MAD_TO_STD * median_filter(np.abs(deviation), size=2 * SCALE_HALF_WINDOW + 1,
-                                             mode="reflect")
+        spread = _MAD_TO_STD * median_filter(
+            np.abs(deviation), size=2 * SCALE_HALF_WINDOW + 1, mode="reflect")
         scale[rows] = np.maximum(spread, floor)
         unit = np.where(scale[rows] > 0, scale[rows], np.inf)
         far = _stands_out(r, unit, SPIKE_SIGMAS)
         if measured is not None:
-            far &= _stands_out(np.asanyarray(measured, dtype=float)[rows], unit,
-                               SPIKE_SIGMAS / 2)
+            far &= _stands_out(measured[rows], unit, SPIKE_SIGMAS / 2)
         ordinary = np.pad(np.abs(deviation) / unit <= NEIGHBOUR_SIGMAS, 1, constant_values=True)
         spikes[rows] = far & ordinary[:-2] & ordinary[2:]
     if np.count_nonzero(spikes) > max(1.0, MAX_SHARE * residual.size):
@@ -161,5 +162,5 @@ def despiked_force(force, spikes, half_window: int = HALF_WINDOW):
     return np.where(spikes, neighbours, force)
 
 
-__all__ = ["HALF_WINDOW", "MAX_SHARE", "NEIGHBOUR_SIGMAS", "SPIKE_SIGMAS", "despiked_force", "find_spikes",
-           "running_median", "spike_rows"]
+__all__ = ["HALF_WINDOW", "MAX_SHARE", "NEIGHBOUR_SIGMAS", "SPIKE_SIGMAS", "despiked_force",
+           "find_spikes", "running_median", "spike_rows"]

@@ -80,6 +80,14 @@ def explained_share(residual, values) -> float:
     return float(np.clip(share, 0.0, 1.0))
 
 
+def correlation(a, b) -> float:
+    """Pearson correlation of two arrays (0 when either is constant)."""
+    a = a - a.mean()
+    b = b - b.mean()
+    den = math.sqrt(float(np.dot(a, a) * np.dot(b, b)))
+    return float(np.dot(a, b) / den) if den > 0 else 0.0
+
+
 def lag_one_correlation(residual, problem) -> float:
     """Correlation of each residual with the next along the kind's regressor (time; v;
     k within one direction and dwell): about 0 for noise, even noise whose spread
@@ -89,12 +97,8 @@ def lag_one_correlation(residual, problem) -> float:
     pairs = [(r[rows][:-1], r[rows][1:]) for rows in orderings(problem)[0] if rows.size > 1]
     if not pairs:
         return 0.0
-    a = np.concatenate([p[0] for p in pairs])
-    b = np.concatenate([p[1] for p in pairs])
-    a = a - a.mean()
-    b = b - b.mean()
-    denominator = math.sqrt(float(np.dot(a, a)) * float(np.dot(b, b)))
-    return float(np.dot(a, b)) / denominator if denominator > 0 else 0.0
+    return correlation(np.concatenate([p[0] for p in pairs]),
+                       np.concatenate([p[1] for p in pairs]))
 
 
 def residual_structure(residual, problem, white: bool) -> list[dict]:
@@ -108,5 +112,5 @@ def residual_structure(residual, problem, white: bool) -> list[dict]:
     return sorted(found, key=lambda item: -item["strength"])
 
 
-__all__ = ["explained_share", "is_white", "lag_one_correlation", "residual_structure",
-           "smoothness_statistic"]
+__all__ = ["correlation", "explained_share", "is_white", "lag_one_correlation",
+           "residual_structure", "smoothness_statistic"]
