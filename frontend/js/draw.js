@@ -25,6 +25,9 @@ export function onSchemeChange(redraw) {
   DARK.addEventListener("change", redraw);
 }
 
+/** A layout key that holds an axis (xaxis, yaxis2, …). */
+export const AXIS_KEY = /^[xy]axis\d*$/;
+
 /** Plotly's modebar buttons are links in the tab order; the page's own buttons (export,
  *  play, downloads) do what they do, so the modebar leaves the keyboard path. */
 function untab(element) {
@@ -41,7 +44,7 @@ function untab(element) {
 export function forPlotly(layout) {
   const out = { ...layout };
   for (const key of Object.keys(layout)) {
-    if (/^[xy]axis\d*$/.test(key)) {
+    if (AXIS_KEY.test(key)) {
       out[key] = { type: "linear", ticklabeloverflow: "allow", ...layout[key] };
     }
   }

@@ -56,7 +56,7 @@ const app = {
   busy: true,
   commitPending: false, // a history entry waits for its frame to be drawn
   lastRedrawMs: null,
-  sim: null, // {key, k, u_ba, F_ba, t_ba, stale}
+  sim: null, // {key, k, u_ba, F_ba, t_ba}: `key` the /api/simulate body they answer
   lugre: null, // {k, u_ba, F_ba}
   simController: null,
   simTimer: null,
@@ -155,7 +155,6 @@ function refresh() {
       if (version !== app.version) return;
       app.frame = frame;
       app.frameKey = key;
-      markSimStale();
       await draw();
       if (version !== app.version) return;
       app.frames += 1;
@@ -229,15 +228,24 @@ function drawNextAhead() {
   // while busy, the frame being drawn asks for its own next step; while playing, the
   // phase plot changes every animation frame
   if (app.busy || app.playing || !ahead?.frame || ahead !== app.ahead) return;
-  const figs = pageFigures(ahead.frame, ahead.state);
+  const figs = aheadFigures();
   for (const id of PLOT_IDS) {
-    const drawing = drawAhead(id, styled(figs[id], pageStyle()), EXPLORER_CONFIG);
+    const drawing = drawAhead(id, figs[id], EXPLORER_CONFIG);
     if (drawing) {
       // a graph that failed to draw ahead is drawn when it is needed
       drawing.then(scheduleDrawAhead, () => {});
       return;
     }
   }
+}
+
+/** The next arrow step's four figures, styled as the page is shown now (null until its
+ *  frame is here). */
+function aheadFigures() {
+  const { ahead } = app;
+  if (!ahead?.frame) return null;
+  const figs = pageFigures(ahead.frame, ahead.state);
+  return Object.fromEntries(PLOT_IDS.map((id) => [id, styled(figs[id], pageStyle())]));
 }
 
 /** Show a figure on plot `id`, styled as the page is shown now; what is left drawn
@@ -477,10 +485,6 @@ function simStale(state, frame) {
   return app.sim.key !== simKey(state, frame);
 }
 
-function markSimStale() {
-  if (app.sim) app.sim.stale = simStale(app.state, app.frame);
-}
-
 function cancelSim() {
   clearTimeout(app.simTimer);
   app.simTimer = null;
@@ -490,7 +494,8 @@ function cancelSim() {
 }
 
 function scheduleSim(now = false) {
-  if (!app.frame || (!app.state.sim && !now) || (!now && app.sim && !app.sim.stale)) {
+  if (!app.frame || (!app.state.sim && !now)
+      || (!now && app.sim && !simStale(app.state, app.frame))) {
     updateSimBusy();
     return;
   }
@@ -512,7 +517,7 @@ async function runSim() {
   try {
     const result = await postJSON("/api/simulate", simulateBody(app.state, rates), controller.signal);
     if (controller !== app.simController) return;
-    app.sim = { ...result, key, stale: key !== simKey() };
+    app.sim = { ...result, key };
     const missing = result.u_ba.filter((value) => value === null).length;
     const seconds = ((performance.now() - started) / 1000).toFixed(2);
     status.textContent = `Simulated ${rates.length} ramps in ${seconds} s`
@@ -785,10 +790,8 @@ window.breakaway = {
   surfaces: () => ({ ...surfaceStats }),
   /** True once the next arrow step's four plots are drawn (ahead, or already shown). */
   aheadDrawn: () => {
-    const { ahead } = app;
-    if (!ahead?.frame) return false;
-    const figs = pageFigures(ahead.frame, ahead.state);
-    return PLOT_IDS.every((id) => holds(id, styled(figs[id], pageStyle())));
+    const figs = aheadFigures();
+    return Boolean(figs) && PLOT_IDS.every((id) => holds(id, figs[id]));
   },
   lastRedrawMs: () => app.lastRedrawMs,
   /** Resolves once the data panel runs no fit; the finished fit's report (or null). */

@@ -8,7 +8,7 @@
 // asked for is equal to the one it was drawn with, and only while the person has not
 // zoomed or hidden traces in the shown graph (which the hidden one would not know of).
 
-import { drawFigure } from "./draw.js";
+import { AXIS_KEY, drawFigure } from "./draw.js";
 
 /** Attributes that belong to the graph on screen, not to either element. */
 const SHOWN = ["role", "aria-label"];
@@ -83,8 +83,9 @@ export function addAheadGraphs(ids) {
 function asDrawn(graph) {
   const layout = graph.layout ?? {};
   const zoomed = Object.keys(layout).some(
-    (key) => /^[xy]axis\d*$/.test(key) && layout[key]?.autorange === false);
-  const hidden = (graph.data ?? []).some((trace) => trace.visible !== undefined && trace.visible !== true);
+    (key) => AXIS_KEY.test(key) && layout[key]?.autorange === false);
+  const hidden = (graph.data ?? []).some(
+    (trace) => trace.visible !== undefined && trace.visible !== true);
   return !zoomed && !hidden;
 }
 
