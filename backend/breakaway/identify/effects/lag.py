@@ -1,0 +1,44 @@
+"""``lag``: frictional lag, g at a filtered velocity (MODEL.md §7)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from ..residuals import correlation
+from .base import Effect, Param
+
+
+@njit(cache=True)
+def lag_filter(v, t, tau):
+    """First-order lag of v: ``v_f,i = v_f,i−1 + (1 − exp(−Δt_i/τ))·(v_i − v_f,i−1)``."""
+    n = v.size
+    out = np.empty(n)
+    out[0] = v[0]
+    for i in range(1, n):
+        w = 1.0 - math.exp(-(t[i] - t[i - 1]) / tau) if tau > 0.0 else 1.0
+        out[i] = out[i - 1] + w * (v[i] - out[i - 1])
+    return out
+
+
+class Lag(Effect):
+    name = "lag"
+    kinds = ("timeseries",)
+    params = (Param("tau", "s", lambda sc: (0.0, sc.duration / 4)),)
+    description = "frictional lag: the Stribeck level follows a filtered velocity"
+    regressor = {"timeseries": "v"}
+
+    def slip_velocity(self, pb, p, v):
+        return lag_filter(v, pb.t, p["tau"])
+
+    def starts(self, pb, current, r):
+        char_time = pb.scales.speed / pb.scales.accel
+        return [{"tau": float(tau)} for tau in char_time * np.array([0.003, 0.01, 0.03, 0.1, 0.3])]
+
+    def signature(self, pb, r, params):
+        sliding, d = pb.sliding_rows(), pb.signed_direction()
+        c = correlation(r[sliding] * d[sliding], pb.a[sliding] * d[sliding])
+        return (f"in sliding the error depends on whether the speed rises or falls "
+                f"(r = {c:.2f} against the acceleration along the motion): F–v loops open")
