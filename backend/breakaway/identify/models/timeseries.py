@@ -1,0 +1,170 @@
+"""(E6') along a measured x(t) (MODEL.md §6 ``timeseries``)."""
+
+from __future__ import annotations
+
+import weakref
+
+import numpy as np
+from scipy.ndimage import uniform_filter1d
+
+from ...presliding import _presliding_kernel
+from ...steady import stribeck_kernel
+from ..effects import engaged_presliding
+from ..kinematics import REVERSAL_STEPS, direction, position_noise, quantum, velocity
+from .base import Problem, Scales, _robust_scale
+
+#: Kinematics per dataset (a fit builds many problems on one record).
+_KINEMATICS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+#: Samples averaged before the direction of a noisy x is read.
+NOISY_X_WINDOW = 21
+
+
+class TimeseriesProblem(Problem):
+    """(E6') along the measured x(t) (MODEL.md §6 ``timeseries``)."""
+
+    kind = "timeseries"
+    base_names = ("Fc", "Fs", "V", "delta", "s")
+
+    def __init__(self, data, effects=(), fixed=None):
+        cols = data.columns
+        self.t, self.x = cols["t"], cols["x"]
+        self.measured = cols["F"]
+        #: independent records (blocks of a screened series): [start, stop) pairs
+        edges = [0, *data.segments, data.n]
+        self.blocks = list(zip(edges[:-1], edges[1:]))
+        self.F0 = data.meta_float("f0", 0.0)
+        cached = _KINEMATICS.get(data)
+        if cached is None:
+            cached = _KINEMATICS[data] = self._kinematics()
+        self.__dict__.update(cached)
+        super().__init__(data, effects, fixed)
+
+    def _kinematics(self) -> dict:
+        """What every model of this record shares; computed once per dataset."""
+        #: quantisation step and noise std of x (0: none), its resolution, and the
+        #: reversal hysteresis: direction changes within a few resolutions are not real
+        self.quantum_x = quantum(self.x)
+        self.noise_x = position_noise(self.x) if self.quantum_x == 0 else 0.0
+        self.resolution_x = max(self.quantum_x, self.noise_x)
+        self.hysteresis = REVERSAL_STEPS * self.resolution_x
+        v = self.kinematic_velocity(self.x)
+        with np.errstate(divide="ignore"):
+            log_speed = np.log(np.abs(v))  # g's argument, reused by every evaluation
+        a = np.concatenate([np.gradient(v[i:j], self.t[i:j]) for i, j in self.blocks])
+        steps = np.abs(np.diff(self.x))
+        moving = steps[steps > 0]
+        scales = Scales(
+            force=_robust_scale(self.measured),
+            speed=_robust_scale(v),
+            travel=float(np.ptp(self.x)) or 1.0,
+            duration=float(self.t[-1] - self.t[0]) or 1.0,
+            accel=_robust_scale(a),
+            step=max(float(np.median(moving)) if moving.size else 1.0, self.quantum_x),
+        )
+        return {"quantum_x": self.quantum_x, "noise_x": self.noise_x,
+                "resolution_x": self.resolution_x, "hysteresis": self.hysteresis, "v": v,
+                "log_speed": log_speed, "a": a, "d": self.kinematic_direction(self.x),
+                "scales": scales}
+
+    def kinematic_velocity(self, x):
+        return np.concatenate([velocity(self.t[a:b], x[a:b], self.resolution_x)
+                               for a, b in self.blocks])
+
+    def kinematic_direction(self, x):
+        if self.noise_x > 0:
+            # Gaussian noise has no largest excursion: the trigger runs on x averaged
+            # over 21 samples, where the noise std is 4.6× smaller than the hysteresis'
+            x = uniform_filter1d(x, NOISY_X_WINDOW, mode="nearest")
+        return np.concatenate([direction(x[a:b], self.hysteresis) for a, b in self.blocks])
+
+    def _presliding(self, ctx, target, s):
+        """(E6') block by block; a later block starts from its measured force."""
+        out = np.empty(self.x.size)
+        for a, b in self.blocks:
+            F0 = self.F0 if a == 0 else float(self.measured[a])
+            x, d = ctx["x"][a:b], ctx["d"][a:b]
+            if ctx["engaged"] is None:
+                out[a:b] = _presliding_kernel(x, d, target[a:b], s, F0)
+            else:
+                out[a:b] = engaged_presliding(x, d, target[a:b], s, F0, ctx["engaged"][a:b])
+        return out
+
+    @property
+    def reversals(self) -> int:
+        return int(np.count_nonzero(np.diff(self.d)))
+
+    def predict(self, p, dither=None):
+        """Predicted force [N]; ``dither`` [m] is added to the positions (velocities
+        follow, directions stay), to propagate the resolution of x."""
+        ctx = {"x": self.x, "v": self.v, "d": self.d, "engaged": None}
+        if dither is not None:
+            ctx["x"] = self.x + dither
+            ctx["v"] = velocity(self.t, ctx["x"], self.resolution_x)
+        for effect in self.effect_objects:
+            ctx = effect.body_motion(self, p, ctx)
+        v_slip = ctx["v"]
+        for effect in self.effect_objects:
+            v_slip = effect.slip_velocity(self, p, v_slip)
+        Fc, Fs = self._levels(p, ctx["d"] < 0)
+        log_speed = self.log_speed if v_slip is self.v else None
+        g = stribeck_kernel(v_slip, Fc, Fs, p["V"], p["delta"], log_speed)
+        for effect in self.effect_objects:
+            g = effect.scale_g(self, p, g)
+        target = ctx["d"] * g
+        for effect in self.effect_objects:
+            target = target + effect.target(self, p, ctx["v"])
+        F = self._presliding(ctx, np.asarray(target, dtype=float), p["s"])
+        for effect in self.effect_objects:
+            F = effect.sensor(self, p, F, ctx)
+        return F
+
+    def sliding_rows(self):
+        speed = np.abs(self.v)
+        return speed >= np.median(speed)
+
+    def regressor_speed(self):
+        return self.v
+
+    def signed_direction(self):
+        return self.d
+
+    def direction_counts(self):
+        moving = np.abs(self.v) >= 0.05 * self.scales.speed
+        d = self.d[moving]
+        return int(np.count_nonzero(d > 0)), int(np.count_nonzero(d < 0)), int(d.size)
+
+    def _last_reversal(self):
+        """Index of the sample before each row's last reversal (0 before the first)."""
+        change = np.flatnonzero(np.diff(self.d) != 0) + 1
+        start = np.zeros(self.x.size, dtype=int)
+        start[change] = change
+        start = np.maximum.accumulate(start)
+        return np.maximum(start - 1, 0), start > 0
+
+    def resolution_noise(self, params, seed=0) -> float:
+        """RMS force error [N] that the resolution of x alone causes in the model.
+
+        An encoder's true position lies within a count of its reading (±q/2 of
+        rounding, and readings that jitter by a count), a noisy x's within its noise
+        std; the model is run on positions drawn that way (uniform within ±q, Gaussian)
+        and compared with its run on the record.
+        """
+        if self.resolution_x == 0:
+            return 0.0
+        rng = np.random.default_rng(seed)
+        if self.quantum_x > 0:
+            dither = self.quantum_x * 2.0 * (rng.random(self.x.size) - 0.5)
+        else:
+            dither = self.noise_x * rng.standard_normal(self.x.size)
+        diff = self.predict(params, dither) - self.predict(params)
+        return float(np.sqrt(np.mean(diff**2)))
+
+    def after_reversal(self, reach):
+        """Rows within ``reach`` [m] of their last reversal (none before the first)."""
+        last, reversed_ = self._last_reversal()
+        return (np.abs(self.x - self.x[last]) <= reach) & reversed_
+
+    def variables(self):
+        last, _ = self._last_reversal()
+        return {"x": self.x, "x - x_r": self.x - self.x[last], "v": self.v, "t": self.t,
+                "time since reversal": self.t - self.t[last], "direction": self.d}
