@@ -32,6 +32,7 @@ from .preparation import SetAside, prepare, without_spikes
 from .residuals import is_white, residual_structure
 from .screening import FULL_REFIT_EVALUATIONS, needs_screening, screening_blocks
 from .selection import Candidate, Selection, Step
+from .warnings.beyond_data import beyond_data, beyond_data_warnings, mark_beyond
 from .warnings.data import data_warnings
 from .warnings.fit import fit_warnings
 from .warnings.floor_low import UNEXPLAINED_RATIO, floor_low_warnings
@@ -133,13 +134,16 @@ def _diagnose(data: Dataset, progress, set_aside: SetAside | None = None,
                              carried=prepared)
     for name in final.effects:
         search.verdicts[name] = Candidate(final.rmse, final.bic, current_heldout, True, None)
+    beyond = beyond_data(final, noise.value)
+    for fit in {id(f): f for f in (base, final, *(s.fit for s in steps))}.values():
+        mark_beyond(fit, beyond if fit is final else beyond_data(fit, noise.value))
     white = is_white(final.residual(), final.problem, noise.value)
     structure = residual_structure(final.residual(), final.problem, white)
     floor_low = [] if white else floor_low_warnings(final, noise.value, structure)
     unexplained = (not white) and final.rmse > UNEXPLAINED_RATIO * noise.value \
         and not floor_low
-    warnings += search.warnings + fit_warnings(final) + travel_warnings(final, structure) \
-        + floor_low
+    warnings += search.warnings + beyond_data_warnings(beyond) + fit_warnings(final) \
+        + travel_warnings(final, structure) + floor_low
     if set_aside is not None:
         warnings.insert(len(prepared), set_aside.warning(data.kind))
     report(1.0, "done")

@@ -209,8 +209,34 @@ def fit_model(data: Dataset, effects=(), starts=None, rows=None, max_nfev=None,
     r = problem.measured[rows] - prediction[rows]
     rss = float(np.dot(r, r))
     assessment = assess(problem, best.x, best.jac, best.cost, n, best.active_mask)
+    assessment = _levels_without_drop(problem, params, rows, assessment)
     return FitResult(problem.effects, params, math.sqrt(rss / n),
                      bic(rss, n, len(problem.names)), n, prediction, problem, assessment)
+
+
+#: Each Stribeck level with its Coulomb level (MODEL.md §8: Fc when Fs = Fc).
+LEVEL_PAIRS = (("Fc", "Fs"), ("Fc_neg", "Fs_neg"))
+
+
+def _levels_without_drop(problem: Problem, params: dict, rows, assessment: Assessment):
+    """MODEL.md §8: when Fs ends on its bound Fs = Fc (no Stribeck drop in the data), Fc
+    is still a result: its standard error (and whether it is determined) comes from
+    the model without the drop, Fc = Fs with V and δ held, where V and δ describe
+    nothing. The same for the negative direction's levels."""
+    ties = {low: level for low, level in LEVEL_PAIRS
+            if low in problem.names and assessment.bound.get(level) == "lower"}
+    if not ties:
+        return assessment
+    held = {name: params[name] for name in ("V", "delta") if name in problem.names}
+    reduced = problem_for(problem.data, problem.effects, {**problem.fixed, **held}, ties=ties)
+    result = _solve(reduced, reduced.to_theta(params), rows, 1)
+    without = assess(reduced, result.x, result.jac, result.cost, rows.size,
+                     result.active_mask)
+    for low, level in ties.items():
+        assessment.stderr[low] = without.stderr[level]
+        assessment.determined[low] = without.determined[level]
+        assessment.why[low] = without.why[level]
+    return assessment
 
 
 def refit(data: Dataset, fit: FitResult, rows=None, max_nfev=None) -> FitResult:

@@ -15,7 +15,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .effects import param_spec
 
 #: Relative standard error above which a parameter is not determined.
 MAX_RELATIVE_ERROR = 1.0
@@ -124,7 +123,7 @@ def assess(problem, theta, jac, cost, n, active_mask=None) -> Assessment:
             reason, se = "flat", None
         elif se < ARTEFACT_RELATIVE_ERROR * abs(value):
             reason, se = "artefact", None
-        elif param_spec(name).relative and se > MAX_RELATIVE_ERROR * abs(value):
+        elif problem.spec(name).relative and se > MAX_RELATIVE_ERROR * abs(value):
             reason = "relative"
         else:
             others = [j for j in range(p) if j != i and not flat[j]

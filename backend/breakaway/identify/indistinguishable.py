@@ -54,4 +54,34 @@ def viscous_or_detection(passing, trials, has_s: bool):
     return named, other, warning("indistinguishable", other, text)
 
 
-__all__ = ["close_rivals", "viscous_or_detection"]
+#: ``viscous`` is ``viscous-power`` at n = 1 (MODEL.md §7): never in one model.
+EXCLUSIVE = {"viscous": "viscous-power", "viscous-power": "viscous"}
+#: ``viscous-power`` is named only when n is this many standard errors from 1.
+POWER_SIGMAS = 3.0
+
+
+def power_is_preferred(power, viscous, heldout_power: float,
+                       heldout_viscous: float) -> tuple[bool, str]:
+    """MODEL.md §7's rule between ``viscous-power`` and ``viscous`` (fits of each, with
+    their held-out errors): the curve is named only when n differs from 1 by more than
+    :data:`POWER_SIGMAS` standard errors and both the BIC and the held-out error prefer
+    it. Returns the verdict and the sentence that explains it."""
+    n, se = power.params["n"], power.stderr.get("n")
+    if se is None or not power.determined.get("n", False):
+        return False, f"its exponent n = {n:.3g} is not determined by these data"
+    distance = abs(n - 1.0) / se
+    if distance <= POWER_SIGMAS:
+        return False, (f"its exponent n = {n:.3g} ± {se:.2g} is within {POWER_SIGMAS:g} "
+                       f"standard errors of 1, where it is viscous")
+    if viscous is not None and not power.bic < viscous.bic:
+        return False, (f"n = {n:.3g} ± {se:.2g}, but the BIC prefers viscous "
+                       f"({viscous.bic:.1f} against {power.bic:.1f})")
+    if not heldout_power < heldout_viscous:
+        return False, (f"n = {n:.3g} ± {se:.2g}, but the held-out error prefers viscous "
+                       f"({heldout_viscous:.4g} against {heldout_power:.4g} N)")
+    return True, (f"n = {n:.3g} ± {se:.2g} differs from 1 by {distance:.0f} standard "
+                  f"errors, and the BIC and the held-out error prefer the curve")
+
+
+__all__ = ["EXCLUSIVE", "POWER_SIGMAS", "close_rivals", "power_is_preferred",
+           "viscous_or_detection"]

@@ -16,15 +16,9 @@ def _clean(value):
     return value if math.isfinite(value) else None
 
 
-def is_rotary(data) -> bool:
-    """Rotary data: ``# units: rotary`` (or forces in N·m / positions in rad in the
-    column headers, recorded by the parser as the same metadata)."""
-    return data.meta.get("units", "").strip().lower() == "rotary"
-
-
 def units(data) -> dict[str, str]:
     """Units of the data's columns and of every parameter key, linear or rotary."""
-    rotary = is_rotary(data)
+    rotary = data.rotary
     columns = {"F": "N", "F_ba": "N", "x": "m", "v": "m/s", "t": "s", "k": "N/s",
                "dwell": "s", "a": "m/s²"}
     return {name: unit_of(u, rotary) for name, u in columns.items()}
@@ -38,9 +32,10 @@ def model_entry(fit: FitResult) -> dict:
             "rmse": _clean(fit.rmse), "bic": _clean(fit.bic)}
 
 
-def parameter_units(data, names) -> dict[str, str]:
-    rotary = is_rotary(data)
-    return {name: unit_of(param_spec(name).unit, rotary) for name in names}
+def parameter_units(data, names, effects=()) -> dict[str, str]:
+    """Units of the parameter keys ``names`` of a model with ``effects``."""
+    rotary = data.rotary
+    return {name: unit_of(param_spec(name, effects).unit, rotary) for name in names}
 
 
 def report(diagnosis: Diagnosis) -> dict:
@@ -74,7 +69,8 @@ def report(diagnosis: Diagnosis) -> dict:
                            "reason": c.reason}
                        for e, c in d.candidates.items()},
         "units": {**units(d.data),
-                  **parameter_units(d.data, list(d.base.params) + list(d.final.params))},
+                  **parameter_units(d.data, list(d.base.params) + list(d.final.params),
+                                   d.final.effects)},
         "screened_rows": d.screened_rows,
         "seconds": round(d.seconds, 3),
     }

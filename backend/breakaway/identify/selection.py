@@ -13,7 +13,8 @@ from .effects import EFFECTS
 from .fitting import FitResult, best_base_starts, fit_model, fit_with_effect, refit
 from .gates import MIN_BIC_DROP, gate
 from .heldout import heldout_error, heldout_rows
-from .indistinguishable import close_rivals, viscous_or_detection
+from .indistinguishable import (EXCLUSIVE, close_rivals, power_is_preferred,
+                                viscous_or_detection)
 from .residuals import is_white
 
 #: Evaluations per parameter of a candidate's screening fit.
@@ -57,9 +58,14 @@ class Selection:
         #: effects that came within MIN_BIC_DROP of an accepted one in its round
         self.rivals: set[str] = set()
         self.heldout_base = None
+        self._heldout: dict[int, tuple[FitResult, float]] = {}
 
     def heldout(self, fit: FitResult) -> float:
-        return heldout_error(self.data, fit, self.train, self.test)
+        """The held-out error of ``fit``'s model (computed once per fit; the fit is kept
+        with its value, so its id is not reused)."""
+        if id(fit) not in self._heldout:
+            self._heldout[id(fit)] = (fit, heldout_error(self.data, fit, self.train, self.test))
+        return self._heldout[id(fit)][1]
 
     def white(self, fit: FitResult) -> bool:
         return is_white(fit.residual(), fit.problem, self.noise)
@@ -101,6 +107,7 @@ class Selection:
             for effect, fit, heldout, evidence in chosen:
                 self.steps.append(Step(effect, fit, evidence, heldout))
                 remaining.remove(effect)
+                self._exclude_partner(effect, remaining)
                 self.report(min(0.9, 0.1 + 0.8 * len(self.steps) / total), f"accepted {effect}")
             current, current_heldout = chosen[-1][1], chosen[-1][2]
             remaining = [e for e in remaining if e not in self.settled]
@@ -110,6 +117,15 @@ class Selection:
                     verdict = self.verdicts.setdefault(effect, Candidate())
                     verdict.reason = "not needed: the residual is white without it"
         return current, current_heldout
+
+    def _exclude_partner(self, effect, remaining):
+        """``viscous`` and ``viscous-power`` are never in one model (MODEL.md §7)."""
+        partner = EXCLUSIVE.get(effect)
+        if partner in remaining:
+            remaining.remove(partner)
+            verdict = self.verdicts.setdefault(partner, Candidate())
+            if verdict.reason is None:
+                verdict.reason = f"never accepted together with {effect}, which was"
 
     def _evidence(self, effect, current, trial, note=""):
         text = EFFECTS[effect].signature(current.problem, current.residual(), trial.params)
@@ -126,6 +142,7 @@ class Selection:
             if reason is None:
                 passing.append(effect)
         passing = self._settle_indistinguishable(passing, trials)
+        passing = self._settle_power(passing, trials, current_heldout)
         for effect in sorted(passing, key=lambda e: trials[e].bic):
             trial = trials[effect]
             heldout = self.heldout(trial)
@@ -150,6 +167,27 @@ class Selection:
         self.verdicts[other].reason = (f"indistinguishable from {named} on these data; "
                                        f"named {named} by the rule of MODEL.md §7")
         return [e for e in passing if e != other]
+
+    def _settle_power(self, passing, trials, current_heldout):
+        """MODEL.md §7: ``viscous-power`` is named only when its n is clearly not 1 and
+        the BIC and the held-out error prefer it; otherwise ``viscous``."""
+        if "viscous-power" not in passing:
+            return passing
+        power, viscous = trials["viscous-power"], trials.get("viscous")
+        h_power = self.heldout(power)
+        self.verdicts["viscous-power"].heldout = h_power
+        if viscous is not None and "viscous" in passing:
+            h_viscous = self.heldout(viscous)
+            self.verdicts["viscous"].heldout = h_viscous
+        else:
+            h_viscous = current_heldout
+        preferred, why = power_is_preferred(power, viscous, h_power, h_viscous)
+        if preferred:
+            if "viscous" in self.verdicts:
+                self.verdicts["viscous"].reason = f"viscous-power describes the data better: {why}"
+            return [e for e in passing if e != "viscous"]
+        self.verdicts["viscous-power"].reason = f"named viscous by the rule of MODEL.md §7: {why}"
+        return [e for e in passing if e != "viscous-power"]
 
     def _choose_pair(self, current, current_heldout, trials):
         """Two effects that pass the gates together when neither does alone."""
@@ -206,6 +244,8 @@ class Selection:
         for effect in list(current.effects):
             for candidate in rejected:
                 others = tuple(e for e in current.effects if e != effect)
+                if EXCLUSIVE.get(candidate) in others:
+                    continue
                 try:
                     reduced = fit_model(self.data, others, starts=[current.params], screen=1)
                     trial = fit_with_effect(self.data, reduced, candidate, restarts=self.restarts)
@@ -215,6 +255,9 @@ class Selection:
                     continue
                 heldout = self.heldout(trial)
                 if heldout >= current_heldout:
+                    continue
+                if candidate == "viscous-power" and effect == "viscous" and not \
+                        power_is_preferred(trial, current, heldout, current_heldout)[0]:
                     continue
                 self.verdicts[effect] = Candidate(reduced.rmse, reduced.bic, None, False,
                                                   f"replaced by {candidate}, which explains "

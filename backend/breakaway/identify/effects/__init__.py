@@ -32,10 +32,11 @@ from .lag import Lag, lag_filter
 from .offset import Offset
 from .ripple import Ripple, long_wavelength, periodogram
 from .viscous import Viscous
+from .viscous_power import ViscousPower
 
 #: The library, in the order the prediction hooks run.
 EFFECTS: dict[str, Effect] = {e.name: e for e in (
-    Viscous(), Asymmetry(), Offset(), Drift(), Inertia(), Ripple(), Lag(), Backlash(),
+    Viscous(), ViscousPower(), Asymmetry(), Offset(), Drift(), Inertia(), Ripple(), Lag(), Backlash(),
     Dwell(), Detection())}
 
 
@@ -49,11 +50,15 @@ def availability(problem) -> dict[str, str | None]:
     return {e.name: e.unavailable(problem) for e in effects_for(problem.kind)}
 
 
-def param_spec(name: str) -> Param:
-    """The :class:`Param` of a base or effect parameter."""
+def param_spec(name: str, effects=()) -> Param:
+    """The :class:`Param` of a base or effect parameter.
+
+    Two effects may share a key (``viscous`` and ``viscous-power`` both have ``sigma``,
+    and are never in one model): the ones in ``effects`` (names) are looked at first.
+    """
     if name in BASE_PARAMS:
         return BASE_PARAMS[name]
-    for effect in EFFECTS.values():
+    for effect in [*(EFFECTS[e] for e in effects), *EFFECTS.values()]:
         for p in effect.params:
             if p.name == name:
                 return p

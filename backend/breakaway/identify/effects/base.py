@@ -9,6 +9,8 @@ from typing import Callable
 
 import numpy as np
 
+from ..csvdata import _ROTARY_UNIT
+
 #: The break-away kind's fixed reading of E13 (MODEL.md §6): F̂ = avg at z* = 0.95.
 BREAKAWAY_Z = 0.95
 #: Bounds of the Stribeck exponent in fits (δ > 0, |δ| >= 0.05).
@@ -70,13 +72,10 @@ BASE_PARAMS: dict[str, Param] = {p.name: p for p in (
           log=True),
 )}
 
-_ROTARY = {"N·s/m": "N·m·s/rad", "m/s": "rad/s", "1/m": "1/rad", "kg": "kg·m²", "N": "N·m",
-           "m": "rad", "m/s²": "rad/s²", "N/s": "N·m/s"}
-
 
 def unit_of(unit: str, rotary: bool) -> str:
     """The unit of a quantity for linear or rotary data (N → N·m, m → rad, …)."""
-    return _ROTARY.get(unit, unit) if rotary else unit
+    return _ROTARY_UNIT.get(unit, unit) if rotary else unit
 
 
 # ---------------------------------------------------------------------------------

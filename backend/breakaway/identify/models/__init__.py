@@ -23,7 +23,7 @@ from .timeseries import TimeseriesProblem
 PROBLEMS = {cls.kind: cls for cls in (TimeseriesProblem, SteadyProblem, BreakawayProblem)}
 
 
-def problem_for(data: Dataset, effects=(), fixed=None) -> Problem:
+def problem_for(data: Dataset, effects=(), fixed=None, ties=None) -> Problem:
     """The :class:`Problem` of ``data``'s kind with ``effects``.
 
     Break-away data at fewer than three distinct rates get a level-only problem
@@ -31,8 +31,8 @@ def problem_for(data: Dataset, effects=(), fixed=None) -> Problem:
     """
     if data.kind == "breakaway":
         level_only = np.unique(data.columns["k"]).size < MIN_RATES
-        return BreakawayProblem(data, effects, fixed, level_only=level_only)
-    return PROBLEMS[data.kind](data, effects, fixed)
+        return BreakawayProblem(data, effects, fixed, ties, level_only=level_only)
+    return PROBLEMS[data.kind](data, effects, fixed, ties)
 
 
 __all__ = ["BreakawayProblem", "PROBLEMS", "Problem", "Scales", "SteadyProblem",

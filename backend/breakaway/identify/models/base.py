@@ -44,6 +44,9 @@ class Problem:
         Names from :data:`breakaway.identify.effects.EFFECTS`.
     fixed : dict, optional
         Parameters held at the given values (left out of θ), e.g. a profiled play.
+    ties : dict, optional
+        Coulomb levels held equal to their Stribeck level (``{"Fc": "Fs"}``): the model
+        without a Stribeck drop. By default only a level-only problem ties them.
     """
 
     kind: str = ""
@@ -51,7 +54,7 @@ class Problem:
     #: only the level is determined: Fc is tied to Fs (and Fc_neg to Fs_neg)
     level_only: bool = False
 
-    def __init__(self, data: Dataset, effects=(), fixed=None):
+    def __init__(self, data: Dataset, effects=(), fixed=None, ties=None):
         self.data = data
         unknown = [e for e in effects if e not in EFFECTS]
         if unknown:
@@ -68,19 +71,26 @@ class Problem:
         unknown = set(self.fixed) - set(names)
         if unknown:
             raise ValueError(f"cannot fix {sorted(unknown)}: not parameters of this model")
-        self.tied = {"Fc": "Fs", "Fc_neg": "Fs_neg"} if self.level_only else {}
+        if ties is not None:
+            self.tied = dict(ties)
+        else:
+            self.tied = {"Fc": "Fs", "Fc_neg": "Fs_neg"} if self.level_only else {}
         self.names = tuple(n for n in names if n not in self.fixed and n not in self.tied)
 
     # -- θ ↔ params ----------------------------------------------------------------
+    def spec(self, name):
+        """The :class:`~breakaway.identify.effects.Param` of one of this model's keys."""
+        return param_spec(name, self.effects)
+
     def _gap_base(self, name):
-        base = param_spec(name).gap_of
+        base = self.spec(name).gap_of
         return base if base in self.names else None
 
     def to_theta(self, params: dict) -> np.ndarray:
         theta = []
         for name in self.names:
             value = params[name]
-            spec = param_spec(name)
+            spec = self.spec(name)
             gap = self._gap_base(name)
             if gap:
                 value = params[name] - params[gap]
@@ -92,7 +102,7 @@ class Problem:
     def to_params(self, theta) -> dict:
         p = {}
         for name, value in zip(self.names, np.asarray(theta, dtype=float)):
-            p[name] = math.exp(value) if param_spec(name).log else float(value)
+            p[name] = math.exp(value) if self.spec(name).log else float(value)
         for name in self.names:
             gap = self._gap_base(name)
             if gap:
@@ -106,9 +116,9 @@ class Problem:
     def bounds(self):
         lo, hi = [], []
         for name in self.names:
-            spec = param_spec(name)
+            spec = self.spec(name)
             if spec.gap_of and not self._gap_base(name):
-                spec = param_spec(spec.gap_of)  # a tied level: bounded like the base level
+                spec = self.spec(spec.gap_of)  # a tied level: bounded like the base level
             a, b = spec.bounds(self.scales)
             if spec.log:
                 a, b = math.log(a), math.log(b)
@@ -117,7 +127,7 @@ class Problem:
         return np.array(lo, dtype=float), np.array(hi, dtype=float)
 
     def is_log(self, name) -> bool:
-        return param_spec(name).log
+        return self.spec(name).log
 
     # -- the model ------------------------------------------------------------------
     def _levels(self, p, negative):
@@ -142,6 +152,16 @@ class Problem:
     @property
     def negative_rows(self):
         return self.signed_direction() < 0
+
+    def curve_speeds(self, params: dict) -> np.ndarray:
+        """The speeds [m/s] at which the data show the steady curve g(v) (E2): where
+        they hold information on Fc, Fs, V and δ (MODEL.md §8 ``beyond-data``)."""
+        raise NotImplementedError
+
+    def held_force(self, params: dict) -> float | None:
+        """The largest |F| [N] the data hold without gross sliding (a lower bound on Fs),
+        or None where the kind has no presliding."""
+        return None
 
     def variables(self) -> dict[str, np.ndarray]:
         """The regressors a residual can depend on (MODEL.md §8 ``residual_structure``)."""

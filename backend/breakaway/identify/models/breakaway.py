@@ -20,7 +20,7 @@ class BreakawayProblem(Problem):
     kind = "breakaway"
     base_names = ("Fc", "Fs", "V", "delta")
 
-    def __init__(self, data, effects=(), fixed=None, level_only=False):
+    def __init__(self, data, effects=(), fixed=None, ties=None, level_only=False):
         self.k = data.columns["k"]
         self.measured = data.columns["F_ba"]
         self.s = data.meta_float("s", 1.0)
@@ -43,7 +43,7 @@ class BreakawayProblem(Problem):
         if level_only:
             # g is flat when Fc = Fs: V and δ drop out; held at neutral values
             fixed = {"V": self.scales.speed, "delta": 1.0, **(fixed or {})}
-        super().__init__(data, effects, fixed)
+        super().__init__(data, effects, fixed, ties)
 
     def F_hat(self, Fc, Fs):
         """The 'avg' reading of F̂ in E13."""
@@ -64,6 +64,9 @@ class BreakawayProblem(Problem):
         for effect in self.effect_objects:
             F = effect.sensor(self, p, F, ctx)
         return F
+
+    def curve_speeds(self, params):
+        return np.abs(self.speed_at_breakaway(params))
 
     def regressor_speed(self):
         return self.k

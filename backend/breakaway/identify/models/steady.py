@@ -14,13 +14,13 @@ class SteadyProblem(Problem):
     kind = "steady"
     base_names = ("Fc", "Fs", "V", "delta")
 
-    def __init__(self, data, effects=(), fixed=None):
+    def __init__(self, data, effects=(), fixed=None, ties=None):
         self.v = data.columns["v"]
         with np.errstate(divide="ignore"):
             self.log_speed = np.log(np.abs(self.v))
         self.measured = data.columns["F"]
         self.scales = Scales(_robust_scale(self.measured), _robust_scale(self.v))
-        super().__init__(data, effects, fixed)
+        super().__init__(data, effects, fixed, ties)
 
     def predict(self, p):
         Fc, Fs = self._levels(p, self.v < 0)
@@ -30,6 +30,9 @@ class SteadyProblem(Problem):
         for effect in self.effect_objects:
             F = effect.sensor(self, p, F, {})
         return F
+
+    def curve_speeds(self, params):
+        return np.abs(self.v)
 
     def regressor_speed(self):
         return self.v

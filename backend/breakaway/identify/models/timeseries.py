@@ -15,6 +15,10 @@ from .base import Problem, Scales, _robust_scale
 
 #: Kinematics per dataset (a fit builds many problems on one record).
 _KINEMATICS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+#: A row is in gross sliding when the presliding fraction s·|x − x_r| exceeds this: the
+#: body has travelled a quarter of the presliding distance past the point where (E6')
+#: reaches the steady curve (a fit that just touches z = 1 at a stroke's end is not).
+GROSS_SLIDING_Z = 1.25
 #: Samples averaged before the direction of a noisy x is read.
 NOISY_X_WINDOW = 21
 
@@ -25,7 +29,7 @@ class TimeseriesProblem(Problem):
     kind = "timeseries"
     base_names = ("Fc", "Fs", "V", "delta", "s")
 
-    def __init__(self, data, effects=(), fixed=None):
+    def __init__(self, data, effects=(), fixed=None, ties=None):
         cols = data.columns
         self.t, self.x = cols["t"], cols["x"]
         self.measured = cols["F"]
@@ -37,7 +41,7 @@ class TimeseriesProblem(Problem):
         if cached is None:
             cached = _KINEMATICS[data] = self._kinematics()
         self.__dict__.update(cached)
-        super().__init__(data, effects, fixed)
+        super().__init__(data, effects, fixed, ties)
 
     def _kinematics(self) -> dict:
         """What every model of this record shares; computed once per dataset."""
@@ -140,6 +144,18 @@ class TimeseriesProblem(Problem):
         start[change] = change
         start = np.maximum.accumulate(start)
         return np.maximum(start - 1, 0), start > 0
+
+    def presliding_fraction(self, params) -> np.ndarray:
+        """z = s·|x − x_r| of each row under ``params`` (x_r at the last reversal)."""
+        last, _ = self._last_reversal()
+        return params["s"] * np.abs(self.x - self.x[last])
+
+    def curve_speeds(self, params):
+        return np.abs(self.v[self.presliding_fraction(params) >= GROSS_SLIDING_Z])
+
+    def held_force(self, params):
+        held = self.presliding_fraction(params) < 1.0
+        return float(np.max(np.abs(self.measured[held]))) if held.any() else None
 
     def resolution_noise(self, params, seed=0) -> float:
         """RMS force error [N] that the resolution of x alone causes in the model.

@@ -18,7 +18,7 @@ def fit_warnings(fit: FitResult) -> list[dict]:
     out = []
     a = fit.assessment
     for name, reason in a.why.items():
-        if reason is None or reason == "fixed":
+        if reason is None or reason in ("fixed", "beyond-data"):
             continue
         value = fit.params[name]
         if reason == "at-bound":
