@@ -71,6 +71,8 @@ def report(diagnosis: Diagnosis) -> dict:
         "units": {**units(d.data),
                   **parameter_units(d.data, list(d.base.params) + list(d.final.params),
                                    d.final.effects)},
+        **({"derivatives": d.base.problem.derivatives.entry()}
+           if d.data.kind == "timeseries" else {}),
         "screened_rows": d.screened_rows,
         "seconds": round(d.seconds, 3),
     }

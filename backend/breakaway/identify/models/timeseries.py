@@ -10,7 +10,8 @@ from scipy.ndimage import uniform_filter1d
 from ...presliding import _presliding_kernel
 from ...steady import stribeck_kernel
 from ..effects import engaged_presliding
-from ..kinematics import REVERSAL_STEPS, direction, position_noise, quantum, velocity
+from ..derivatives import block_velocity, derivatives
+from ..kinematics import REVERSAL_STEPS, direction, position_noise, quantum
 from .base import Problem, Scales, _robust_scale
 
 #: Kinematics per dataset (a fit builds many problems on one record).
@@ -51,10 +52,12 @@ class TimeseriesProblem(Problem):
         self.noise_x = position_noise(self.x) if self.quantum_x == 0 else 0.0
         self.resolution_x = max(self.quantum_x, self.noise_x)
         self.hysteresis = REVERSAL_STEPS * self.resolution_x
-        v = self.kinematic_velocity(self.x)
+        #: v and a, and how they were taken (MODEL.md §7 ``derivatives``)
+        self.derivatives = derivatives(self.t, self.x, self.quantum_x, self.noise_x,
+                                       self.blocks)
+        v, a = self.derivatives.v, self.derivatives.a
         with np.errstate(divide="ignore"):
             log_speed = np.log(np.abs(v))  # g's argument, reused by every evaluation
-        a = np.concatenate([np.gradient(v[i:j], self.t[i:j]) for i, j in self.blocks])
         steps = np.abs(np.diff(self.x))
         moving = steps[steps > 0]
         scales = Scales(
@@ -66,13 +69,15 @@ class TimeseriesProblem(Problem):
             step=max(float(np.median(moving)) if moving.size else 1.0, self.quantum_x),
         )
         return {"quantum_x": self.quantum_x, "noise_x": self.noise_x,
-                "resolution_x": self.resolution_x, "hysteresis": self.hysteresis, "v": v,
+                "resolution_x": self.resolution_x, "hysteresis": self.hysteresis,
+                "derivatives": self.derivatives, "v": v,
                 "log_speed": log_speed, "a": a, "d": self.kinematic_direction(self.x),
                 "scales": scales}
 
     def kinematic_velocity(self, x):
-        return np.concatenate([velocity(self.t[a:b], x[a:b], self.resolution_x)
-                               for a, b in self.blocks])
+        """v of another position record of the same samples (the body behind a play, x
+        dithered by its resolution), taken as the record's own v is."""
+        return block_velocity(self.t, x, self.resolution_x, self.blocks)
 
     def kinematic_direction(self, x):
         if self.noise_x > 0:
@@ -103,7 +108,7 @@ class TimeseriesProblem(Problem):
         ctx = {"x": self.x, "v": self.v, "d": self.d, "engaged": None}
         if dither is not None:
             ctx["x"] = self.x + dither
-            ctx["v"] = velocity(self.t, ctx["x"], self.resolution_x)
+            ctx["v"] = self.kinematic_velocity(ctx["x"])
         for effect in self.effect_objects:
             ctx = effect.body_motion(self, p, ctx)
         v_slip = ctx["v"]

@@ -1,0 +1,259 @@
+"""Velocity and acceleration of a position record (MODEL.md §7 ``derivatives``).
+
+Every kind and effect that needs v or a takes them from here.
+
+- Exact x (synthetic, unquantised, noise-free): ``numpy.gradient`` for v and again for
+  a, so that the round trips of MODEL.md §3 stay exact.
+- Measured x (an encoder's steps, or noise in x) is never differenced twice: one count
+  over two samples at 1 kHz would be an acceleration of 10⁶ counts/s². Both come from
+  local polynomial fits of x over windows the data choose:
+
+  - v is each sample's least-squares slope over the narrowest centred window in which
+    x moves :data:`WINDOW_RESOLUTIONS` resolutions (:func:`velocity`): fast motion
+    keeps its detail (a reversal, the presliding that follows), slow motion is timed
+    over several counts instead of showing one count as a spike;
+  - a is the curvature of a quadratic (Savitzky–Golay,
+    :func:`scipy.signal.savgol_filter`; the same fit in t where the sampling is
+    uneven) over the narrowest window in which the error of x (``q/√12`` for steps of
+    q, the noise std otherwise) contributes at most :data:`NOISE_TO_SIGNAL` of a's RMS
+    (:func:`choose_window`): a wider window only smooths the signal, a narrower one
+    lets the counts through.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from numba import njit
+from scipy.signal import savgol_coeffs, savgol_filter
+
+#: An adaptive window spans at least this many resolutions of x ...
+WINDOW_RESOLUTIONS = 8
+#: ... and at most this many samples on each side.
+MAX_HALF_WINDOW = 100
+
+
+@njit(cache=True)
+def _adaptive_velocity(t, x, span, max_half):
+    n = x.size
+    v = np.empty(n)
+    for i in range(n):
+        w = 1
+        while True:
+            lo = max(i - w, 0)
+            hi = min(i + w, n - 1)
+            if abs(x[hi] - x[lo]) >= span or w >= max_half or (lo == 0 and hi == n - 1):
+                break
+            w += 1
+        # least-squares slope over the window: the counts' ±q/2 errors average out
+        # where an end-to-end difference would keep two of them
+        tm = 0.0
+        xm = 0.0
+        for j in range(lo, hi + 1):
+            tm += t[j]
+            xm += x[j]
+        tm /= hi - lo + 1
+        xm /= hi - lo + 1
+        num = 0.0
+        den = 0.0
+        for j in range(lo, hi + 1):
+            num += (t[j] - tm) * (x[j] - xm)
+            den += (t[j] - tm) ** 2
+        v[i] = num / den
+    return v
+
+
+def velocity(t, x, resolution: float = 0.0):
+    """Velocity of a position record [m/s].
+
+    ``gradient(x, t)`` (MODEL.md §3) when x is exact (``resolution = 0``). For an
+    encoder's steps or a noisy x, each sample's velocity is the slope over the
+    narrowest centred window in which x moves by at least
+    :data:`WINDOW_RESOLUTIONS` resolutions (at most :data:`MAX_HALF_WINDOW` samples on
+    each side): fast motion keeps its detail, slow motion is timed over several counts
+    instead of showing one count as a spike, and jitter at rest averages out.
+    """
+    t = np.ascontiguousarray(t, dtype=float)
+    x = np.ascontiguousarray(x, dtype=float)
+    if x.size < 5 or resolution <= 0:
+        return np.gradient(x, t)
+    return _adaptive_velocity(t, x, WINDOW_RESOLUTIONS * resolution, MAX_HALF_WINDOW)
+
+
+#: Degree of the local polynomial: a quadratic gives the slope and the curvature.
+ORDER = 2
+#: The resolution of x may contribute at most this share of a's RMS: an inertia m_e
+#: fitted on such an a is biased low by about the share squared (1 %).
+NOISE_TO_SIGNAL = 0.1
+#: Windows tried [samples], odd, about √2 apart.
+WINDOWS = (5, 7, 9, 13, 17, 25, 33, 47, 65, 93, 129, 181, 257, 363, 513)
+#: Sampling is uniform when every step is within this share of the median step.
+UNIFORM_TOLERANCE = 1e-3
+#: Rows the window is chosen on (a long record is judged on evenly spread samples).
+CHOICE_ROWS = 200_000
+
+
+@dataclass(frozen=True)
+class Derivatives:
+    """v [m/s] and a [m/s²] of a record and how they were taken."""
+
+    v: np.ndarray
+    a: np.ndarray
+    method: str  # "gradient" or "savgol"
+    window: int  # samples of a's local fit (3 for numpy.gradient's central difference)
+    order: int
+
+    def entry(self) -> dict:
+        """The report's ``derivatives`` object (MODEL.md §8), with how v was taken."""
+        velocity_text = ("numpy.gradient" if self.method == "gradient" else
+                         f"local slope over the narrowest window in which x moves "
+                         f"{WINDOW_RESOLUTIONS} resolutions")
+        return {"method": self.method, "window": int(self.window), "order": int(self.order),
+                "velocity": velocity_text}
+
+
+def _uniform_step(t) -> float | None:
+    """The sampling interval when ``t`` is uniformly sampled, else None."""
+    steps = np.diff(t)
+    dt = float(np.median(steps))
+    if dt > 0 and float(np.max(np.abs(steps - dt))) <= UNIFORM_TOLERANCE * dt:
+        return dt
+    return None
+
+
+@njit(cache=True)
+def _local_quadratic(t, x, half):
+    """Slope and curvature of a least-squares quadratic in t over each sample's window
+    of ``2·half + 1`` samples (shifted inwards at the ends), for uneven sampling."""
+    n = x.size
+    v = np.empty(n)
+    a = np.empty(n)
+    for i in range(n):
+        lo = min(max(i - half, 0), max(n - 2 * half - 1, 0))
+        hi = min(lo + 2 * half + 1, n)
+        s0 = s1 = s2 = s3 = s4 = 0.0
+        b0 = b1 = b2 = 0.0
+        for j in range(lo, hi):
+            u = t[j] - t[i]
+            u2 = u * u
+            s0 += 1.0
+            s1 += u
+            s2 += u2
+            s3 += u2 * u
+            s4 += u2 * u2
+            b0 += x[j]
+            b1 += u * x[j]
+            b2 += u2 * x[j]
+        # normal equations of x ≈ c0 + c1·u + c2·u² (Cramer's rule, 3 × 3)
+        det = s0 * (s2 * s4 - s3 * s3) - s1 * (s1 * s4 - s3 * s2) + s2 * (s1 * s3 - s2 * s2)
+        if det == 0.0:
+            v[i] = 0.0
+            a[i] = 0.0
+            continue
+        c1 = (s0 * (b1 * s4 - s3 * b2) - b0 * (s1 * s4 - s3 * s2) + s2 * (s1 * b2 - b1 * s2)) / det
+        c2 = (s0 * (s2 * b2 - b1 * s3) - s1 * (s1 * b2 - b1 * s2) + b0 * (s1 * s3 - s2 * s2)) / det
+        v[i] = c1
+        a[i] = 2.0 * c2
+    return v, a
+
+
+def local_fit(t, x, window: int, order: int = ORDER):
+    """v and a of ``x(t)`` from a local polynomial of ``order`` over ``window`` samples.
+
+    Parameters
+    ----------
+    t, x : array_like
+        Times [s] (increasing) and positions [m].
+    window : int
+        Odd number of samples of each fit.
+    order : int
+        Degree of the polynomial (2 where the sampling is uneven).
+
+    Returns
+    -------
+    v, a : numpy.ndarray
+        [m/s], [m/s²].
+    """
+    t = np.ascontiguousarray(t, dtype=float)
+    x = np.ascontiguousarray(x, dtype=float)
+    window = min(window, x.size if x.size % 2 else x.size - 1)
+    dt = _uniform_step(t)
+    if dt is None:
+        return _local_quadratic(t, x, window // 2)
+    v = savgol_filter(x, window, order, deriv=1, delta=dt, mode="interp")
+    a = savgol_filter(x, window, order, deriv=2, delta=dt, mode="interp")
+    return v, a
+
+
+def acceleration_noise(window: int, resolution: float, dt: float, order: int = ORDER) -> float:
+    """Std of a [m/s²] that a white error of ``resolution`` in x causes in a local fit
+    of ``window`` samples at interval ``dt``."""
+    coeffs = savgol_coeffs(window, order, deriv=2, delta=dt, use="dot")
+    return resolution * float(np.sqrt(np.dot(coeffs, coeffs)))
+
+
+def choose_window(t, x, resolution: float, order: int = ORDER) -> int:
+    """The narrowest window of :data:`WINDOWS` in which the resolution of x [m]
+    contributes at most :data:`NOISE_TO_SIGNAL` of a's RMS (the widest that fits the
+    record when none does)."""
+    t = np.asanyarray(t, dtype=float)
+    x = np.asanyarray(x, dtype=float)
+    stride = max(1, x.size // CHOICE_ROWS)
+    dt = float(np.median(np.diff(t)))
+    fitting = [w for w in WINDOWS if w <= max(x.size // 4, WINDOWS[0])]
+    for window in fitting:
+        _, a = local_fit(t, x, window, order)
+        noise = acceleration_noise(window, resolution, dt, order)
+        signal = math.sqrt(max(float(np.mean(a[::stride] ** 2)) - noise**2, 0.0))
+        if noise <= NOISE_TO_SIGNAL * signal:
+            return window
+    return fitting[-1]
+
+
+def block_velocity(t, x, resolution: float, blocks) -> np.ndarray:
+    """:func:`velocity` of each independent block of a record [m/s]."""
+    return np.concatenate([velocity(t[i:j], x[i:j], resolution) for i, j in blocks])
+
+
+def derivatives(t, x, quantum: float = 0.0, noise: float = 0.0, blocks=None,
+                window: int | None = None) -> Derivatives:
+    """v and a of a position record (see the module docstring).
+
+    Parameters
+    ----------
+    t, x : array_like
+        Times [s] and positions [m].
+    quantum : float
+        The step of an encoder's x [m] (0: none).
+    noise : float
+        The noise std of x [m] (0: none). With neither, x is exact and
+        ``numpy.gradient`` is used.
+    blocks : list of (start, stop), optional
+        Independent records within the arrays (a screened series); each is
+        differentiated on its own.
+    window : int, optional
+        The acceleration's window [samples]; chosen from the data
+        (:func:`choose_window`) by default.
+    """
+    t = np.asanyarray(t, dtype=float)
+    x = np.asanyarray(x, dtype=float)
+    blocks = blocks or [(0, x.size)]
+    resolution = max(quantum, noise)
+    if resolution <= 0 or x.size < WINDOWS[0]:
+        v = np.concatenate([np.gradient(x[i:j], t[i:j]) for i, j in blocks])
+        a = np.concatenate([np.gradient(v[i:j], t[i:j]) for i, j in blocks])
+        return Derivatives(v, a, "gradient", 3, 2)
+    error = quantum / math.sqrt(12) if quantum > 0 else noise
+    if window is None:
+        first, last = max(blocks, key=lambda block: block[1] - block[0])
+        window = choose_window(t[first:last], x[first:last], error)
+    v = block_velocity(t, x, resolution, blocks)
+    a = np.concatenate([local_fit(t[i:j], x[i:j], window)[1] if j - i >= WINDOWS[0]
+                        else np.gradient(v[i:j], t[i:j]) for i, j in blocks])
+    return Derivatives(v, a, "savgol", window, ORDER)
+
+
+__all__ = ["block_velocity", "MAX_HALF_WINDOW", "WINDOW_RESOLUTIONS", "velocity", "Derivatives", "NOISE_TO_SIGNAL", "ORDER", "WINDOWS", "acceleration_noise",
+           "choose_window", "derivatives", "local_fit"]
