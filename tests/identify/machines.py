@@ -167,8 +167,8 @@ def _presliding_record(family, seed, rng, t, u, Fs, truth):
     x = quasistatic_presliding(u, Fs, truth["s"])
     count = 2 * math.pi / 2 ** rng.choice([20, 21, 22])
     u_max = float(np.max(u))
-    measured = quantise(u + rng.uniform(0.002, 0.005) * u_max * rng.standard_normal(u.size),
-                        4 * u_max / 2**16)
+    noise = rng.uniform(0.002, 0.005) * u_max
+    measured = quantise(u + noise * rng.standard_normal(u.size), 4 * u_max / 2**16)
     recorded = encoder_counts(x, count, rng) * count
     csv = csv_text({"t": (t, "%.3f"), "x": (recorded, "%.9f"), "F": (measured, "%.4f")},
                    {"units": "rotary", "source": "joint on a test bench, open-loop torque"})
@@ -178,7 +178,7 @@ def _presliding_record(family, seed, rng, t, u, Fs, truth):
         warnings=(("beyond-data", "Fs"),),
         determined={"Fs": False, "Fc": False, "V": False, "delta": False},
         lower_bound=("Fs", held), force_max=held, speed_max=float(np.max(np.abs(v))))
-    return Recording(family, seed, csv, {**truth, "held": held}, expect,
+    return Recording(family, seed, csv, {**truth, "held": held, "noise": noise}, expect,
                      {"t": t, "x": x, "u": u, "count": count, "Fs": Fs})
 
 
@@ -249,14 +249,14 @@ def stick_slip_creep(seed: int = 0, rows: int = 10_000) -> Recording:
     x, v, friction = run_open_loop(t, np.zeros(rows), p, m, substeps=100, drive=drive,
                                    stiffness=stiffness)
     spring = stiffness * (drive - x)
-    measured = quantise(spring + rng.uniform(0.01, 0.03) * rng.standard_normal(rows),
-                        100.0 / 2**16)
+    noise = rng.uniform(0.01, 0.03)
+    measured = quantise(spring + noise * rng.standard_normal(rows), 100.0 / 2**16)
     count = rng.choice([5e-8, 1e-7, 5e-7])
     recorded = encoder_counts(x, count, rng) * count
     csv = csv_text({"t": (t, "%.3f"), "x": (recorded, "%.8f"), "F": (measured, "%.4f")},
                    {"source": "stage dragged through a spring, load cell in the spring"})
     truth = {"Fc": Fc, "Fs": Fs, "V": V, "delta": delta, "s": s, "m_e": m, "speed": speed,
-             "stiffness": stiffness}
+             "stiffness": stiffness, "noise": noise}
     expect = Expectation(
         allowed=frozenset({"inertia"}), warnings=(("stick-slip", None), ("one-direction", None)),
         close={"Fc": Close(Fc), "Fs": Close(Fs)},
