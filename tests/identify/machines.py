@@ -13,7 +13,7 @@ Each generator returns a :class:`Recording`: the CSV text a user would upload, t
 truth, the :class:`~tests.identify.expectations.Expectation` of its report, and the
 hidden true signals (for the generators' own tests). The families of issue 19 are
 here; the machine-like versions of issue 9's classes are in
-:mod:`tests.identify.machines_classic`. :data:`FAMILIES` lists all of them.
+:mod:`tests.identify.machines_classic`. :func:`families` lists all of them.
 """
 
 from __future__ import annotations
@@ -357,7 +357,7 @@ def _position_loop(rng, t, p, J, Fs, count):
 
 def families() -> dict:
     """Every machine-like family by name: a callable of the seed."""
-    from . import machines_classic
+    from . import machines_classic  # here: it imports this module's Recording
 
     return {
         "servo-axis": servo_axis,
