@@ -28,6 +28,9 @@ _QUANTUM_SHARE = 0.05
 
 #: The fewest decimals tried when reading the printed resolution of a column.
 _MAX_DECIMALS = 12
+#: A step this many printed units or more is the data's own (an encoder's count), not
+#: the logger's digits, however fast the values change.
+_PRINTED_STEPS = 3
 #: Gaps within this factor of the smallest are steps of one count.
 _ONE_STEP = 1.5
 
@@ -63,8 +66,9 @@ def quantum(values) -> float:
     -------
     float
         ``q`` [same unit] when at least 98 % of the distinct values lie on that grid
-        (within 5 % of a step, or the printed rounding when that is coarser) and q is
-        not negligible against the typical sample-to-sample change; 0 otherwise.
+        (within 5 % of a step, or the printed rounding when that is coarser), and q is
+        either coarser than the printed digits or, when it is their unit, not negligible
+        against the typical sample-to-sample change; 0 otherwise.
     """
     values = np.asanyarray(values, dtype=float)
     levels = np.unique(values)
@@ -87,6 +91,9 @@ def quantum(values) -> float:
     on_grid = np.abs(levels - (offset + q * counts)) <= tolerance
     if np.mean(on_grid) < 0.98:
         return 0.0
+    if q >= _PRINTED_STEPS * unit:
+        return float(q)  # a grid coarser than the digits: the data's own step
+    # a grid of the printed digits themselves counts only where it is coarse
     changes = np.abs(np.diff(values))
     changes = changes[changes > 0]
     typical = float(np.median(changes)) if changes.size else 0.0

@@ -158,9 +158,10 @@ class Problem:
         they hold information on Fc, Fs, V and δ (MODEL.md §8 ``beyond-data``)."""
         raise NotImplementedError
 
-    def held_force(self, params: dict) -> float | None:
-        """The largest |F| [N] the data hold without gross sliding (a lower bound on Fs),
-        or None where the kind has no presliding."""
+    def held_force(self, params: dict) -> tuple[float, float] | None:
+        """The largest friction [N] the data hold without gross sliding in the positive
+        and in the negative direction (lower bounds on Fs and its negative-direction
+        level), or None where the kind has no presliding."""
         return None
 
     def variables(self) -> dict[str, np.ndarray]:

@@ -20,6 +20,9 @@ _KINEMATICS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
 #: body has travelled a quarter of the presliding distance past the point where (E6')
 #: reaches the steady curve (a fit that just touches z = 1 at a stroke's end is not).
 GROSS_SLIDING_Z = 1.25
+#: A body in presliding is held when it moves slower than this percentile of its speeds
+#: in gross sliding.
+HELD_SPEED_PERCENTILE = 10
 #: Samples averaged before the direction of a noisy x is read.
 NOISY_X_WINDOW = 21
 
@@ -102,9 +105,10 @@ class TimeseriesProblem(Problem):
     def reversals(self) -> int:
         return int(np.count_nonzero(np.diff(self.d)))
 
-    def predict(self, p, dither=None):
+    def predict(self, p, dither=None, sensor=True):
         """Predicted force [N]; ``dither`` [m] is added to the positions (velocities
-        follow, directions stay), to propagate the resolution of x."""
+        follow, directions stay), to propagate the resolution of x. ``sensor=False``
+        leaves out what the sensor adds (offset, inertia, …): the friction alone."""
         ctx = {"x": self.x, "v": self.v, "d": self.d, "engaged": None}
         if dither is not None:
             ctx["x"] = self.x + dither
@@ -123,6 +127,8 @@ class TimeseriesProblem(Problem):
         for effect in self.effect_objects:
             target = target + effect.target(self, p, ctx["v"])
         F = self._presliding(ctx, np.asarray(target, dtype=float), p["s"])
+        if not sensor:
+            return F
         for effect in self.effect_objects:
             F = effect.sensor(self, p, F, ctx)
         return F
@@ -159,8 +165,20 @@ class TimeseriesProblem(Problem):
         return np.abs(self.v[self.presliding_fraction(params) >= GROSS_SLIDING_Z])
 
     def held_force(self, params):
-        held = self.presliding_fraction(params) < 1.0
-        return float(np.max(np.abs(self.measured[held]))) if held.any() else None
+        """The largest friction measured each way (the force less what the sensor adds:
+        an inertial m·a is no friction held) where the body is held: the fitted
+        presliding has not reached the steady curve (z < 1), and the body moves slower
+        than nearly all of its gross sliding (a break-away under way is not held)."""
+        z = self.presliding_fraction(params)
+        held = z < 1.0
+        sliding = np.abs(self.v[z >= GROSS_SLIDING_Z])
+        if sliding.size:
+            held &= np.abs(self.v) < np.percentile(sliding, HELD_SPEED_PERCENTILE)
+        if not held.any():
+            return None
+        added = self.predict(params) - self.predict(params, sensor=False)
+        friction = (self.measured - added)[held]
+        return max(float(np.max(friction)), 0.0), max(float(-np.min(friction)), 0.0)
 
     def resolution_noise(self, params, seed=0) -> float:
         """RMS force error [N] that the resolution of x alone causes in the model.

@@ -54,7 +54,7 @@ def beyond_data(fit: FitResult, noise: float) -> dict[str, str]:
     held = pb.held_force(p)
     top = float(np.max(np.abs(pb.measured)))
     if speeds.size == 0:
-        bound = held if held is not None else top
+        bound = max(held) if held is not None else top
         z = float(np.max(pb.presliding_fraction(p))) if hasattr(pb, "presliding_fraction") \
             else math.nan
         add(("Fc", "Fs", "V", "delta", "Fc_neg", "Fs_neg"), (
@@ -63,18 +63,21 @@ def beyond_data(fit: FitResult, noise: float) -> dict[str, str]:
             f"held without sliding, {bound:.4g} {unit}, is a lower bound on Fs"))
         return found
 
-    for low, level in LEVELS:
+    asymmetric = "Fs_neg" in p
+    for (low, level), way in zip(LEVELS, (0, 1)):
         if level not in p:
             continue
         Fs, Fc = p[level], p[low]
+        # without asymmetry one level holds both ways
+        bound = None if held is None else (held[way] if asymmetric else max(held))
         if Fs > top * (1 + ABOVE_SHARE) and Fs > top + ABOVE_NOISE * noise:
             add((level,), (
                 f"{level} = {Fs:.4g} {unit} lies above every force in the file (the largest is "
                 f"{top:.4g} {unit}): the Stribeck peak is an extrapolation; the data set "
-                f"only {level} ≥ {held if held is not None else top:.4g} {unit}"))
-        if held is not None and Fs < held - ABOVE_NOISE * noise:
+                f"only {level} ≥ {bound if bound is not None else top:.4g} {unit}"))
+        if bound is not None and Fs < bound - ABOVE_NOISE * noise:
             add((level,), (
-                f"{level} = {Fs:.4g} {unit} is below {held:.4g} {unit}, a force the data hold "
+                f"{level} = {Fs:.4g} {unit} is below {bound:.4g} {unit}, a force the data hold "
                 f"without gross sliding, which is a lower bound on {level}"))
         slowest, fastest = float(np.min(speeds)), float(np.max(speeds))
         if fit.assessment.bound.get(level) == "lower" or Fs <= Fc:
