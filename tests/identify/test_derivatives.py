@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from breakaway.identify.derivatives import (NOISE_TO_SIGNAL, WINDOWS, acceleration_noise,
-                                            choose_window, derivatives, local_fit)
+                                            choose_window, derivatives, local_fit, smooth_fit)
 
 RATE = 1000.0
 
@@ -76,7 +76,9 @@ def test_uneven_sampling_is_fitted_in_t():
     v_even, a_even = local_fit(even_t, even_x, 47)
     # the same fit as Savitzky–Golay where the sampling is even
     from breakaway.identify.derivatives import _local_quadratic
-    v_loop, a_loop = _local_quadratic(even_t, even_x, 23)
+    p_loop, v_loop, a_loop = _local_quadratic(even_t, even_x, 23)
+    p_even = smooth_fit(even_t, even_x, 47)[0]
+    np.testing.assert_allclose(p_loop[30:-30], p_even[30:-30], rtol=0, atol=1e-12)
     np.testing.assert_allclose(a_loop[30:-30], a_even[30:-30], rtol=1e-6, atol=1e-6)
     np.testing.assert_allclose(v_loop[30:-30], v_even[30:-30], rtol=1e-6, atol=1e-9)
 

@@ -8,8 +8,8 @@ Every kind and effect that needs v or a takes them from here.
   over two samples at 1 kHz would be an acceleration of 10⁶ counts/s². Both come from
   local polynomial fits of x over windows the data choose:
 
-  - v is each sample's least-squares slope over the narrowest centred window in which
-    x moves :data:`WINDOW_RESOLUTIONS` resolutions (:func:`velocity`): fast motion
+  - v is each sample's least-squares slope over the narrowest centred window over
+    which x spans :data:`WINDOW_RESOLUTIONS` resolutions (:func:`velocity`): fast motion
     keeps its detail (a reversal, the presliding that follows), slow motion is timed
     over several counts instead of showing one count as a spike;
   - a is the curvature of a quadratic (Savitzky–Golay,
@@ -39,12 +39,18 @@ MAX_HALF_WINDOW = 100
 def _adaptive_velocity(t, x, span, max_half):
     n = x.size
     v = np.empty(n)
+    duration = np.empty(n)
     for i in range(n):
         w = 1
+        low = high = x[i]
         while True:
             lo = max(i - w, 0)
             hi = min(i + w, n - 1)
-            if abs(x[hi] - x[lo]) >= span or w >= max_half or (lo == 0 and hi == n - 1):
+            # the range the window covers, not its ends' difference: at a turn the two
+            # ends sit at the same height while the body has moved
+            low = min(low, x[lo], x[hi])
+            high = max(high, x[lo], x[hi])
+            if high - low >= span or w >= max_half or (lo == 0 and hi == n - 1):
                 break
             w += 1
         # least-squares slope over the window: the counts' ±q/2 errors average out
@@ -62,7 +68,8 @@ def _adaptive_velocity(t, x, span, max_half):
             num += (t[j] - tm) * (x[j] - xm)
             den += (t[j] - tm) ** 2
         v[i] = num / den
-    return v
+        duration[i] = t[hi] - t[lo]
+    return v, duration
 
 
 def velocity(t, x, resolution: float = 0.0):
@@ -70,15 +77,21 @@ def velocity(t, x, resolution: float = 0.0):
 
     ``gradient(x, t)`` (MODEL.md §3) when x is exact (``resolution = 0``). For an
     encoder's steps or a noisy x, each sample's velocity is the slope over the
-    narrowest centred window in which x moves by at least
+    narrowest centred window over which x spans at least
     :data:`WINDOW_RESOLUTIONS` resolutions (at most :data:`MAX_HALF_WINDOW` samples on
     each side): fast motion keeps its detail, slow motion is timed over several counts
     instead of showing one count as a spike, and jitter at rest averages out.
     """
+    return velocity_and_span(t, x, resolution)[0]
+
+
+def velocity_and_span(t, x, resolution: float = 0.0):
+    """:func:`velocity` [m/s] and the time each sample's velocity is taken over [s]
+    (two samples' spacing for ``numpy.gradient``)."""
     t = np.ascontiguousarray(t, dtype=float)
     x = np.ascontiguousarray(x, dtype=float)
     if x.size < 5 or resolution <= 0:
-        return np.gradient(x, t)
+        return np.gradient(x, t), np.gradient(t) * 2.0
     return _adaptive_velocity(t, x, WINDOW_RESOLUTIONS * resolution, MAX_HALF_WINDOW)
 
 
@@ -104,6 +117,10 @@ class Derivatives:
     method: str  # "gradient" or "savgol"
     window: int  # samples of a's local fit (3 for numpy.gradient's central difference)
     order: int
+    #: the time a slow sample's velocity is taken over (median over the slower half of
+    #: the moving samples, where g of E2 is steep) [s]: no lag shorter than it can be
+    #: told from how v is taken
+    velocity_span: float = 0.0
 
     def entry(self) -> dict:
         """The report's ``derivatives`` object (MODEL.md §8), with how v was taken."""
@@ -125,9 +142,10 @@ def _uniform_step(t) -> float | None:
 
 @njit(cache=True)
 def _local_quadratic(t, x, half):
-    """Slope and curvature of a least-squares quadratic in t over each sample's window
-    of ``2·half + 1`` samples (shifted inwards at the ends), for uneven sampling."""
+    """Value, slope and curvature of a least-squares quadratic in t over each sample's
+    window of ``2·half + 1`` samples (shifted inwards at the ends), for uneven sampling."""
     n = x.size
+    p = np.empty(n)
     v = np.empty(n)
     a = np.empty(n)
     for i in range(n):
@@ -149,14 +167,17 @@ def _local_quadratic(t, x, half):
         # normal equations of x ≈ c0 + c1·u + c2·u² (Cramer's rule, 3 × 3)
         det = s0 * (s2 * s4 - s3 * s3) - s1 * (s1 * s4 - s3 * s2) + s2 * (s1 * s3 - s2 * s2)
         if det == 0.0:
+            p[i] = x[i]
             v[i] = 0.0
             a[i] = 0.0
             continue
+        c0 = (b0 * (s2 * s4 - s3 * s3) - s1 * (b1 * s4 - s3 * b2) + s2 * (b1 * s3 - s2 * b2)) / det
         c1 = (s0 * (b1 * s4 - s3 * b2) - b0 * (s1 * s4 - s3 * s2) + s2 * (s1 * b2 - b1 * s2)) / det
         c2 = (s0 * (s2 * b2 - b1 * s3) - s1 * (s1 * b2 - b1 * s2) + b0 * (s1 * s3 - s2 * s2)) / det
+        p[i] = c0
         v[i] = c1
         a[i] = 2.0 * c2
-    return v, a
+    return p, v, a
 
 
 def local_fit(t, x, window: int, order: int = ORDER):
@@ -178,13 +199,20 @@ def local_fit(t, x, window: int, order: int = ORDER):
     """
     t = np.ascontiguousarray(t, dtype=float)
     x = np.ascontiguousarray(x, dtype=float)
+    return smooth_fit(t, x, window, order)[1:]
+
+
+def smooth_fit(t, x, window: int, order: int = ORDER):
+    """Position, velocity and acceleration of ``x(t)`` from a local polynomial of
+    ``order`` over ``window`` samples ([m], [m/s], [m/s²])."""
+    t = np.ascontiguousarray(t, dtype=float)
+    x = np.ascontiguousarray(x, dtype=float)
     window = min(window, x.size if x.size % 2 else x.size - 1)
     dt = _uniform_step(t)
     if dt is None:
         return _local_quadratic(t, x, window // 2)
-    v = savgol_filter(x, window, order, deriv=1, delta=dt, mode="interp")
-    a = savgol_filter(x, window, order, deriv=2, delta=dt, mode="interp")
-    return v, a
+    return tuple(savgol_filter(x, window, order, deriv=k, delta=dt, mode="interp")
+                 for k in (0, 1, 2))
 
 
 def acceleration_noise(window: int, resolution: float, dt: float, order: int = ORDER) -> float:
@@ -244,16 +272,27 @@ def derivatives(t, x, quantum: float = 0.0, noise: float = 0.0, blocks=None,
     if resolution <= 0 or x.size < WINDOWS[0]:
         v = np.concatenate([np.gradient(x[i:j], t[i:j]) for i, j in blocks])
         a = np.concatenate([np.gradient(v[i:j], t[i:j]) for i, j in blocks])
-        return Derivatives(v, a, "gradient", 3, 2)
+        return Derivatives(v, a, "gradient", 3, 2, _span(v, np.gradient(t) * 2.0))
     error = quantum / math.sqrt(12) if quantum > 0 else noise
     if window is None:
         first, last = max(blocks, key=lambda block: block[1] - block[0])
         window = choose_window(t[first:last], x[first:last], error)
-    v = block_velocity(t, x, resolution, blocks)
+    parts = [velocity_and_span(t[i:j], x[i:j], resolution) for i, j in blocks]
+    v = np.concatenate([part[0] for part in parts])
+    spans = np.concatenate([part[1] for part in parts])
     a = np.concatenate([local_fit(t[i:j], x[i:j], window)[1] if j - i >= WINDOWS[0]
                         else np.gradient(v[i:j], t[i:j]) for i, j in blocks])
-    return Derivatives(v, a, "savgol", window, ORDER)
+    return Derivatives(v, a, "savgol", window, ORDER, _span(v, spans))
 
 
-__all__ = ["block_velocity", "MAX_HALF_WINDOW", "WINDOW_RESOLUTIONS", "velocity", "Derivatives", "NOISE_TO_SIGNAL", "ORDER", "WINDOWS", "acceleration_noise",
+def _span(v, spans) -> float:
+    """The median span of the slower half of the moving samples [s]."""
+    speed = np.abs(v)
+    moving = speed > 0
+    if not moving.any():
+        return float(np.median(spans))
+    return float(np.median(spans[moving & (speed <= np.median(speed[moving]))]))
+
+
+__all__ = ["velocity_and_span", "smooth_fit", "block_velocity", "MAX_HALF_WINDOW", "WINDOW_RESOLUTIONS", "velocity", "Derivatives", "NOISE_TO_SIGNAL", "ORDER", "WINDOWS", "acceleration_noise",
            "choose_window", "derivatives", "local_fit"]

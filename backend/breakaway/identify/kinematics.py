@@ -113,23 +113,33 @@ def _direction_kernel(x, h):
         return d
     current = 1.0 if x[start] > x[0] else -1.0
     extreme = x[0]
-    at = 0
+    reached = 0  # the first sample at the extreme's value
+    at = 0  # the last one
     for i in range(n):
         if current * (x[i] - extreme) >= 0.0:
+            if x[i] != extreme:
+                reached = i
             extreme = x[i]
             at = i
             d[i] = current
         elif current * (extreme - x[i]) > h:
             # a reversal at the extreme: the samples after it move the other way, and the
-            # new extreme is the furthest of them in the new direction
+            # new extreme is the furthest of them in the new direction. An encoder holds
+            # its extreme count for a run of samples; the turn is somewhere in that run,
+            # placed in its middle (at its last sample it would be late by half the run
+            # on average, and (E6') is steepest just after a turn)
+            turn = (reached + at) // 2
             current = -current
-            extreme = x[at + 1]
-            new_at = at + 1
-            for j in range(at + 1, i + 1):
+            extreme = x[turn + 1]
+            new_reached = new_at = turn + 1
+            for j in range(turn + 1, i + 1):
                 d[j] = current
                 if current * (x[j] - extreme) >= 0.0:
+                    if x[j] != extreme:
+                        new_reached = j
                     extreme = x[j]
                     new_at = j
+            reached = new_reached
             at = new_at
         else:
             d[i] = current

@@ -138,6 +138,7 @@ class Selection:
             reason = gate(current, trial, self.noise)
             if reason is None:
                 trials[effect] = trial = refit(self.data, trial)  # the full polish
+                reason = EFFECTS[effect].unresolved(trial.problem, trial.params)
             self.verdicts[effect] = Candidate(trial.rmse, trial.bic, None, False, reason)
             if reason is None:
                 passing.append(effect)
@@ -202,8 +203,9 @@ class Selection:
                                            restarts=self.restarts)
                 except (ValueError, FloatingPointError):
                     continue
-                if gate(current, pair, self.noise, added=2) is None and (
-                        best is None or pair.bic < best[2].bic):
+                if gate(current, pair, self.noise, added=2) is None and not any(
+                        EFFECTS[e].unresolved(pair.problem, pair.params) for e in (first, second)) \
+                        and (best is None or pair.bic < best[2].bic):
                     best = (first, second, pair)
         if best is None:
             return None
@@ -251,7 +253,8 @@ class Selection:
                     trial = fit_with_effect(self.data, reduced, candidate, restarts=self.restarts)
                 except (ValueError, FloatingPointError):
                     continue
-                if trial.bic > current.bic - MIN_BIC_DROP:
+                if trial.bic > current.bic - MIN_BIC_DROP or \
+                        EFFECTS[candidate].unresolved(trial.problem, trial.params):
                     continue
                 heldout = self.heldout(trial)
                 if heldout >= current_heldout:

@@ -77,6 +77,13 @@ class Backlash(Effect):
             return f"the record has {pb.reversals} reversal(s); a play shows at reversals"
         return None
 
+    def unresolved(self, pb, params):
+        if params["play"] <= pb.hysteresis:
+            return (f"a play of {params['play']:.3g} is within the resolution of x (direction "
+                    f"changes up to {pb.hysteresis:.3g} are not reversals): it cannot be told "
+                    f"from how the record reads a turn")
+        return None
+
     def body_motion(self, pb, p, ctx):
         if p["play"] <= 0:
             return ctx

@@ -119,6 +119,12 @@ class Effect:
         """Why the current residual rules the effect out this round (None: try it)."""
         return None
 
+    def unresolved(self, pb, params: dict) -> str | None:
+        """Why the fitted effect lies within what the data cannot resolve (a play
+        inside the encoder's resolution, a lag shorter than the velocity's own window),
+        so that it cannot be told from how the data were read (None: it can)."""
+        return None
+
     def starts(self, pb, current: dict, residual) -> list[dict]:
         """Starting values of the effect's parameters, read off the current residual."""
         raise NotImplementedError

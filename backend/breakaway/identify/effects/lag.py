@@ -30,6 +30,13 @@ class Lag(Effect):
     description = "frictional lag: the Stribeck level follows a filtered velocity"
     regressor = {"timeseries": "v"}
 
+    def unresolved(self, pb, params):
+        span = pb.derivatives.velocity_span
+        if params["tau"] <= span:
+            return (f"a lag of {params['tau']:.3g} s is no longer than the time v is taken over "
+                    f"({span:.3g} s): it cannot be told from how the velocity is measured")
+        return None
+
     def slip_velocity(self, pb, p, v):
         return lag_filter(v, pb.t, p["tau"])
 

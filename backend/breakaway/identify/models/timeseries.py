@@ -10,7 +10,7 @@ from scipy.ndimage import uniform_filter1d
 from ...presliding import _presliding_kernel
 from ...steady import stribeck_kernel
 from ..effects import engaged_presliding
-from ..derivatives import block_velocity, derivatives
+from ..derivatives import block_velocity, derivatives, smooth_fit
 from ..kinematics import REVERSAL_STEPS, direction, position_noise, quantum
 from .base import Problem, Scales, _robust_scale
 
@@ -20,6 +20,10 @@ _KINEMATICS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
 #: body has travelled a quarter of the presliding distance past the point where (E6')
 #: reaches the steady curve (a fit that just touches z = 1 at a stroke's end is not).
 GROSS_SLIDING_Z = 1.25
+#: Readings of the smoothed record that estimate what the resolution of x does.
+RESOLUTION_DRAWS = 4
+#: The short of the two smoothings of the record [samples] (a quick turn survives it).
+SHORT_SMOOTHING = 13
 #: A body in presliding is held when it moves slower than this percentile of its speeds
 #: in gross sliding.
 HELD_SPEED_PERCENTILE = 10
@@ -82,12 +86,15 @@ class TimeseriesProblem(Problem):
         dithered by its resolution), taken as the record's own v is."""
         return block_velocity(self.t, x, self.resolution_x, self.blocks)
 
-    def kinematic_direction(self, x):
-        if self.noise_x > 0:
+    def kinematic_direction(self, x, hysteresis=None):
+        """Directions of a position record of the same samples, with this record's
+        reversal hysteresis unless another is given."""
+        hysteresis = self.hysteresis if hysteresis is None else hysteresis
+        if self.noise_x > 0 and hysteresis > 0:
             # Gaussian noise has no largest excursion: the trigger runs on x averaged
             # over 21 samples, where the noise std is 4.6× smaller than the hysteresis'
             x = uniform_filter1d(x, NOISY_X_WINDOW, mode="nearest")
-        return np.concatenate([direction(x[a:b], self.hysteresis) for a, b in self.blocks])
+        return np.concatenate([direction(x[a:b], hysteresis) for a, b in self.blocks])
 
     def _presliding(self, ctx, target, s):
         """(E6') block by block; a later block starts from its measured force."""
@@ -105,14 +112,17 @@ class TimeseriesProblem(Problem):
     def reversals(self) -> int:
         return int(np.count_nonzero(np.diff(self.d)))
 
-    def predict(self, p, dither=None, sensor=True):
+    def predict(self, p, dither=None, sensor=True, directions=None):
         """Predicted force [N]; ``dither`` [m] is added to the positions (velocities
-        follow, directions stay), to propagate the resolution of x. ``sensor=False``
-        leaves out what the sensor adds (offset, inertia, …): the friction alone."""
+        follow; the directions stay unless ``directions`` are given), to propagate the
+        resolution of x. ``sensor=False`` leaves out what the sensor adds (offset,
+        inertia, …): the friction alone."""
         ctx = {"x": self.x, "v": self.v, "d": self.d, "engaged": None}
         if dither is not None:
             ctx["x"] = self.x + dither
             ctx["v"] = self.kinematic_velocity(ctx["x"])
+        if directions is not None:
+            ctx["d"] = directions
         for effect in self.effect_objects:
             ctx = effect.body_motion(self, p, ctx)
         v_slip = ctx["v"]
@@ -183,20 +193,40 @@ class TimeseriesProblem(Problem):
     def resolution_noise(self, params, seed=0) -> float:
         """RMS force error [N] that the resolution of x alone causes in the model.
 
-        An encoder's true position lies within a count of its reading (±q/2 of
-        rounding, and readings that jitter by a count), a noisy x's within its noise
-        std; the model is run on positions drawn that way (uniform within ±q, Gaussian)
-        and compared with its run on the record.
+        The record is smoothed (the local quadratic of :mod:`..derivatives`), and the
+        model run on that path with its own reversals is compared with the model run
+        on the path read again the way the record was read — by an encoder of the same
+        step at a random phase (each reading keeps its error while the body stays
+        within a count, as real counts do), or with the same noise std — with the
+        reversals this engine finds in such a reading. Both parts count: (E6') is
+        steepest just after a reversal, where a count of x_r moves F most. Smoothing
+        can only hide detail (a quick turn), so the path is smoothed at two scales,
+        the acceleration's window and :data:`SHORT_SMOOTHING` samples, and the larger
+        error is taken.
         """
         if self.resolution_x == 0:
             return 0.0
+        return max(self._reading_error(params, window, seed)
+                   for window in {SHORT_SMOOTHING, self.derivatives.window})
+
+    def _reading_error(self, params, window: int, seed: int) -> float:
         rng = np.random.default_rng(seed)
-        if self.quantum_x > 0:
-            dither = self.quantum_x * 2.0 * (rng.random(self.x.size) - 0.5)
-        else:
-            dither = self.noise_x * rng.standard_normal(self.x.size)
-        diff = self.predict(params, dither) - self.predict(params)
-        return float(np.sqrt(np.mean(diff**2)))
+        smooth = np.concatenate([
+            smooth_fit(self.t[a:b], self.x[a:b], window)[0] if b - a >= window
+            else self.x[a:b] for a, b in self.blocks])
+        # the path's own reversals: any turn the reading could resolve at all
+        exact = self.predict(params, smooth - self.x,
+                             directions=self.kinematic_direction(smooth, 0.5 * self.resolution_x))
+        errors = []
+        for _ in range(RESOLUTION_DRAWS):
+            if self.quantum_x > 0:
+                phase = rng.uniform(0.0, self.quantum_x)
+                read = self.quantum_x * np.round((smooth - phase) / self.quantum_x) + phase
+            else:
+                read = smooth + self.noise_x * rng.standard_normal(smooth.size)
+            errors.append(self.predict(params, read - self.x,
+                                       directions=self.kinematic_direction(read)) - exact)
+        return float(np.sqrt(np.mean(np.square(errors))))
 
     def after_reversal(self, reach):
         """Rows within ``reach`` [m] of their last reversal (none before the first)."""
