@@ -18,7 +18,8 @@ from .errors import http_error_handler, request_validation_handler
 from .fitworkers import FitWorkers
 from .jobstore import JobStore
 from .middleware import BodySizeLimit, CatchAll, CompressPages, SameOrigin, SecurityHeaders
-from .routers import assets, explore, fit, health, loop, presets, ramp, samples, simulate
+from .routers import (assets, explore, export, fit, health, loop, presets, ramp, samples,
+                      simulate)
 from .simulation import SimulationRunner
 
 #: The API, one router per resource.
@@ -30,6 +31,7 @@ ROUTERS: list[APIRouter] = [
     ramp.router,
     loop.router,
     fit.router,
+    export.router,
     samples.router,
     assets.router,
 ]
