@@ -45,15 +45,15 @@ def stick_phases(t, u, v, F, code):
     """
     t, u, v, F = (np.asanyarray(a, dtype=float) for a in (t, u, v, F))
     code = np.asanyarray(code)
-    start, pairs = 0, []
+    start, begin, end = 0, [], []
     for i in np.flatnonzero(code & (EVENT_BREAKAWAY | EVENT_STICK)):
         if code[i] & EVENT_BREAKAWAY and start is not None:
-            pairs.append((start, i))
+            begin.append(start)
+            end.append(i)
             start = None
         if code[i] & EVENT_STICK:
             start = i
-    begin, end = (np.array(side, dtype=int) for side in zip(*pairs)) if pairs else (
-        np.empty(0, dtype=int), np.empty(0, dtype=int))
+    begin, end = np.array(begin, dtype=int), np.array(end, dtype=int)
     direction = np.where(v[end] < 0, -1.0, 1.0)
     with np.errstate(divide="ignore", invalid="ignore"):
         k = direction * (u[end] - u[begin]) / (t[end] - t[begin])
@@ -152,7 +152,7 @@ def loop_experiment(model: str, params: dict, controller: dict, reference: dict,
                                             run.e[grid], run.t_end)
     rows = [dict(zip(phases, values)) for values in zip(*phases.values())]
     for row, value in zip(rows, e13):
-        row["E13"] = float(value) if math.isfinite(value) else None
+        row["E13"] = _finite_or_none(value)
         row["direction"] = int(row["direction"])
         for key in ("t_start", "t_ba", "k", "u_ba", "u_start", "F_ba"):
             row[key] = _finite_or_none(row[key])
