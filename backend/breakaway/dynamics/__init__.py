@@ -11,7 +11,7 @@ integrated in one place, :func:`breakaway.dynamics.integrator._integrate`:
   (a motion reversal starting a new presliding branch; in the loop also a
   break-away or the compensation's branch) and returns the event's code;
 - ``stop(t, y, p, mem)``: a change from ``< 0`` to ``>= 0`` ends the run
-  (break-away).
+  (the ramp's break-away; a loop that runs away).
 
 ``p`` holds the parameters (the rate ``k``, or the controller and reference) and
 ``mem`` the discrete state.
