@@ -202,7 +202,7 @@ def simulate_loop(params, controller, reference, duration, compensation=None,
     entry = LOOP_LUGRE if model == "lugre" else LOOP_PRESLIDING
     rec, mem = _run_grid(entry.id, p, y0, mem0, float(duration), atol, rtol, max_steps,
                          int(points), EVENT_BREAKAWAY | EVENT_STICK, LOOP_EVENT_CAPACITY)
-    r, _, u = _loop_outputs(rec.t, rec.y, rec.mem, p)
+    r, u = _loop_outputs(rec.t, rec.y, rec.mem, p)
     x = rec.y[:, 0]
     return LoopRun(rec.t, x, rec.y[:, 1], u, rec.F, r, r - x, rec.code, rec.t_end,
                    rec.stopped, int(mem[_REVERSALS]))

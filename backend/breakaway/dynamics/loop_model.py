@@ -178,13 +178,13 @@ def _loop_lugre_jump(t, y, p, mem):
 
 @njit(cache=True)
 def _loop_outputs(t, y, mem, p):
-    """r, ṙ and u at recorded samples (t, y and the memory ``mem`` of each)."""
+    """r and u at recorded samples (t, y and the memory ``mem`` of each)."""
     n = t.size
-    r, r_dot, u = np.empty(n), np.empty(n), np.empty(n)
+    r, u = np.empty(n), np.empty(n)
     for i in range(n):
-        r[i], r_dot[i] = _reference(t[i], p)
-        u[i] = _control(t[i], y[i], p, mem[i], r[i], r_dot[i])
-    return r, r_dot, u
+        r[i], r_dot = _reference(t[i], p)
+        u[i] = _control(t[i], y[i], p, mem[i], r[i], r_dot)
+    return r, u
 
 
 # -- set-up -------------------------------------------------------------------------
