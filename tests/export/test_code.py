@@ -144,16 +144,18 @@ def test_streaming_form_is_the_reference_discretisation_but_for_the_velocity():
     assert np.max(np.abs(streamed - batch)) > 0  # not the same computation
 
 
-def test_an_identified_model_leaves_the_tool_unchanged(compiler, tmp_path):
+@pytest.mark.parametrize("effect", ["viscous", "viscous-power"])
+def test_an_identified_model_leaves_the_tool_unchanged(effect, compiler, tmp_path):
     """A report from the identification itself: its fitted model, exported, run."""
     from breakaway.identify import identify
     from breakaway.identify.synthetic import make_dataset
 
-    data, _ = make_dataset("timeseries", ("viscous",), seed=4, n=3000)
+    data, _ = make_dataset("timeseries", (effect,), seed=4, n=3000)
     report = identify(data)
-    assert "viscous" in report["effects"] and report["t_0"] == data.columns["t"][0]
+    assert report["effects"] == [effect] and report["t_0"] == data.columns["t"][0]
     model = model_from_report(report)
-    assert model.sigma == report["final"]["params"]["sigma"]
+    fitted = report["final"]["params"]
+    assert model.sigma == fitted["sigma"] and model.n == fitted.get("n", 1.0)
     t, x = data.columns["t"], data.columns["x"]
     want = streaming_force(model, t, x)
     module = load_module(export_model(report, "python"), tmp_path / "friction_model.py")
