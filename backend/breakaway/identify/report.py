@@ -44,7 +44,9 @@ def report(diagnosis: Diagnosis) -> dict:
     Besides the §8 keys: each step's held-out error ``heldout``; ``units`` (of the
     columns and of every parameter, linear or rotary); ``noise_method`` (how the floor
     was estimated); ``screened_rows`` (rows of the blocks the candidates were screened
-    on, 0 when every row was used) and ``seconds`` (wall time).
+    on, 0 when every row was used) and ``seconds`` (wall time); what an export of the
+    model needs beyond ``final.params``: ``t_0`` (timeseries: the first sample's time,
+    where ``drift`` refers to) and ``s`` (breakaway: the presliding scale E13 used).
     """
     d = diagnosis
     return {
@@ -75,7 +77,17 @@ def report(diagnosis: Diagnosis) -> dict:
            if d.data.kind == "timeseries" else {}),
         "screened_rows": d.screened_rows,
         "seconds": round(d.seconds, 3),
+        **_context(d.data),
     }
+
+
+def _context(data) -> dict:
+    """``t_0`` of a time series, ``s`` of break-away data (see :func:`report`)."""
+    if data.kind == "timeseries":
+        return {"t_0": float(data.columns["t"][0])}
+    if data.kind == "breakaway":
+        return {"s": data.meta_float("s", 1.0)}
+    return {}
 
 
 __all__ = ["model_entry", "report", "units"]
