@@ -36,6 +36,7 @@ from .warnings.beyond_data import beyond_data, beyond_data_warnings, mark_beyond
 from .warnings.data import data_warnings
 from .warnings.fit import fit_warnings
 from .warnings.floor_low import UNEXPLAINED_RATIO, floor_low_warnings
+from .warnings.stick_slip import stick_slip_warnings
 from .warnings.travel import travel_warnings
 
 
@@ -98,7 +99,8 @@ def _diagnose(data: Dataset, progress, set_aside: SetAside | None = None,
         full_problem, screen, screen_base, base = _base_fits(data, screened, screen_base)
         noise = estimate(full_problem)
     noise = _with_position_noise(full_problem, noise, base)
-    warnings = list(prepared) + data_warnings(full_problem, noise)
+    warnings = list(prepared) + data_warnings(full_problem, noise) \
+        + stick_slip_warnings(full_problem)
     report(0.1, "screening candidate effects")
 
     search = Selection(screen, noise.value, report)

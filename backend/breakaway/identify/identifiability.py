@@ -24,7 +24,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-
 #: Relative standard error above which a parameter is not determined.
 MAX_RELATIVE_ERROR = 1.0
 #: Correlation above which two parameters are not separately determined.

@@ -13,8 +13,12 @@ from .effects import EFFECTS
 from .fitting import FitResult, best_base_starts, fit_model, fit_with_effect, refit
 from .gates import MIN_BIC_DROP, gate
 from .heldout import heldout_error, heldout_rows
-from .indistinguishable import (EXCLUSIVE, close_rivals, power_is_preferred,
-                                viscous_or_detection)
+from .indistinguishable import (
+    EXCLUSIVE,
+    close_rivals,
+    power_is_preferred,
+    viscous_or_detection,
+)
 from .residuals import is_white
 
 #: Evaluations per parameter of a candidate's screening fit.

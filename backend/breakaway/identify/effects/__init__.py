@@ -22,8 +22,16 @@ from __future__ import annotations
 
 from .asymmetry import Asymmetry
 from .backlash import Backlash, engaged_presliding, play_operator
-from .base import (BASE_PARAMS, BREAKAWAY_Z, DELTA_BOUNDS, MIN_RATES, MIN_RIPPLE_PERIODS,
-                   Effect, Param, unit_of)
+from .base import (
+    BASE_PARAMS,
+    BREAKAWAY_Z,
+    DELTA_BOUNDS,
+    MIN_RATES,
+    MIN_RIPPLE_PERIODS,
+    Effect,
+    Param,
+    unit_of,
+)
 from .detection import Detection, viscous_equivalent_of_detection
 from .drift import Drift
 from .dwell import Dwell

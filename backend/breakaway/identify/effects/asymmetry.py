@@ -4,8 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .base import (Effect, Param, _direction_means, _fmt, _level,
-                   _needs_both_directions)
+from .base import Effect, Param, _direction_means, _fmt, _level, _needs_both_directions
 
 
 class Asymmetry(Effect):

@@ -30,6 +30,31 @@ class Ripple(Effect):
     def sensor(self, pb, p, F, ctx):
         return F + p["A"] * np.sin(2 * np.pi * pb.x / p["wavelength"] + p["phase"])
 
+    def unresolved(self, pb, params):
+        """Friction locked to position repeats wherever the body is: a ripple must be
+        the stick-slip cycle's travel nowhere (MODEL.md §8 ``stick-slip``) and hold its
+        wavelength and phase in both halves of the travel."""
+        lam = params["wavelength"]
+        cycle = pb.stick_slip
+        if cycle is not None and cycle.matches(lam):
+            return (f"stick-slip: its wavelength {lam:.3g} is the distance the body slips "
+                    f"per stick-slip cycle ({cycle.travel:.3g}): the force oscillates with "
+                    f"the cycle, not with the position")
+        ripple = params["A"] * np.sin(2 * np.pi * pb.x / lam + params["phase"])
+        own = pb.measured - pb.predict(params) + ripple  # what the ripple took
+        middle = 0.5 * (float(np.min(pb.x)) + float(np.max(pb.x)))
+        halves = [pb.x < middle, pb.x >= middle]
+        found = [_local_ripple(pb.x[h], own[h], lam) for h in halves]
+        if any(f is None for f in found):
+            return None
+        (lam_a, phase_a), (lam_b, phase_b) = found
+        gap = abs(math.remainder(phase_a - phase_b, 2 * math.pi))
+        if abs(lam_a / lam_b - 1) > HALF_WAVELENGTH_TOLERANCE or gap > HALF_PHASE_TOLERANCE:
+            return (f"it does not hold across the travel: the two halves of x give "
+                    f"wavelengths {lam_a:.3g} and {lam_b:.3g}, phases {phase_a:+.2f} and "
+                    f"{phase_b:+.2f} rad")
+        return None
+
     def refuse(self, pb, residual):
         lam = long_wavelength(pb, residual)
         if lam is None:
@@ -67,6 +92,25 @@ class Ripple(Effect):
         c = math.hypot(correlation(r, np.sin(phase)), correlation(r, np.cos(phase)))
         return (f"the residual is periodic in x with wavelength {_fmt(lam)} m "
                 f"(correlation {c:.2f} with a sinusoid of x)")
+
+
+#: The two halves of the travel must agree on the wavelength to this share ...
+HALF_WAVELENGTH_TOLERANCE = 0.08
+#: ... and on the phase at the fitted wavelength to this [rad].
+HALF_PHASE_TOLERANCE = 0.6
+
+
+def _local_ripple(x, r, wavelength):
+    """The wavelength near ``wavelength`` (within 15 %) at which ``r`` is most periodic
+    in ``x``, and the phase at ``wavelength`` itself; None for too few rows."""
+    if x.size < 20:
+        return None
+    grid = wavelength * np.linspace(0.85, 1.15, 31)
+    best = float(grid[int(np.argmax(periodogram(x, r, grid)))])
+    phase = 2 * np.pi * x / wavelength
+    basis = np.column_stack([np.sin(phase), np.cos(phase), np.ones_like(x)])
+    (c_sin, c_cos, _), *_ = np.linalg.lstsq(basis, r, rcond=None)
+    return best, float(math.atan2(c_cos, c_sin))
 
 
 def long_wavelength(pb, r):

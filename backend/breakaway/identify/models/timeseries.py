@@ -9,9 +9,10 @@ from scipy.ndimage import uniform_filter1d
 
 from ...presliding import _presliding_kernel
 from ...steady import stribeck_kernel
-from ..effects import engaged_presliding
 from ..derivatives import block_velocity, derivatives, smooth_fit
+from ..effects import engaged_presliding
 from ..kinematics import REVERSAL_STEPS, direction, position_noise, quantum
+from ..stickslip import find_stick_slip
 from .base import Problem, Scales, _robust_scale
 
 #: Kinematics per dataset (a fit builds many problems on one record).
@@ -165,6 +166,15 @@ class TimeseriesProblem(Problem):
         start[change] = change
         start = np.maximum.accumulate(start)
         return np.maximum(start - 1, 0), start > 0
+
+    @property
+    def stick_slip(self):
+        """The record's stick-slip cycle (:mod:`..stickslip`), or None; found once per
+        dataset."""
+        cached = _KINEMATICS[self.data]
+        if "stick_slip" not in cached:
+            cached["stick_slip"] = find_stick_slip(self.t, self.x, self.measured)
+        return cached["stick_slip"]
 
     def presliding_fraction(self, params) -> np.ndarray:
         """z = s·|x − x_r| of each row under ``params`` (x_r at the last reversal)."""
