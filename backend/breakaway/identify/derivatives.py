@@ -72,6 +72,67 @@ def _adaptive_velocity(t, x, span, max_half):
     return v, duration
 
 
+#: The position a model runs on is a local quadratic over the narrowest window over
+#: which x spans this many resolutions ...
+POSITION_RESOLUTIONS = 4
+#: ... and at least this many samples on each side.
+MIN_POSITION_HALF_WINDOW = 2
+
+
+@njit(cache=True)
+def _adaptive_position(t, x, span, min_half, max_half):
+    n = x.size
+    p = np.empty(n)
+    for i in range(n):
+        w = min_half
+        while True:
+            lo = max(i - w, 0)
+            hi = min(i + w, n - 1)
+            low = high = x[lo]
+            for j in range(lo, hi + 1):
+                low = min(low, x[j])
+                high = max(high, x[j])
+            if high - low >= span or w >= max_half or (lo == 0 and hi == n - 1):
+                break
+            w += 1
+        s0 = s1 = s2 = s3 = s4 = 0.0
+        b0 = b1 = b2 = 0.0
+        for j in range(lo, hi + 1):
+            u = t[j] - t[i]
+            u2 = u * u
+            s0 += 1.0
+            s1 += u
+            s2 += u2
+            s3 += u2 * u
+            s4 += u2 * u2
+            b0 += x[j]
+            b1 += u * x[j]
+            b2 += u2 * x[j]
+        det = s0 * (s2 * s4 - s3 * s3) - s1 * (s1 * s4 - s3 * s2) + s2 * (s1 * s3 - s2 * s2)
+        if det == 0.0:
+            p[i] = x[i]
+        else:
+            p[i] = (b0 * (s2 * s4 - s3 * s3) - s1 * (b1 * s4 - s3 * b2)
+                    + s2 * (b1 * s3 - s2 * b2)) / det
+    return p
+
+
+def positions(t, x, resolution: float = 0.0):
+    """The positions a model runs on [m]: x itself when it is exact (MODEL.md §3); for
+    an encoder's steps or a noisy x, each sample's value of a least-squares quadratic in
+    t over the narrowest centred window (at least 5 samples) over which x spans
+    :data:`POSITION_RESOLUTIONS` resolutions. A count holds its error while the body
+    creeps through it, and (E6') is steepest just after a turn, where a model run on
+    the raw counts would jump by a good part of Fs at every count (a presliding reach
+    of a few counts); the fit averages the counts' errors and keeps a quick turn."""
+    t = np.ascontiguousarray(t, dtype=float)
+    x = np.ascontiguousarray(x, dtype=float)
+    if x.size < 2 * MIN_POSITION_HALF_WINDOW + 1 or resolution <= 0:
+        return x
+    return _adaptive_position(t, x, POSITION_RESOLUTIONS * resolution,
+                              MIN_POSITION_HALF_WINDOW, MAX_HALF_WINDOW)
+
+
 def velocity(t, x, resolution: float = 0.0):
     """Velocity of a position record [m/s].
 
@@ -294,5 +355,5 @@ def _span(v, spans) -> float:
     return float(np.median(spans[moving & (speed <= np.median(speed[moving]))]))
 
 
-__all__ = ["velocity_and_span", "smooth_fit", "block_velocity", "MAX_HALF_WINDOW", "WINDOW_RESOLUTIONS", "velocity", "Derivatives", "NOISE_TO_SIGNAL", "ORDER", "WINDOWS", "acceleration_noise",
+__all__ = ["POSITION_RESOLUTIONS", "positions", "velocity_and_span", "smooth_fit", "block_velocity", "MAX_HALF_WINDOW", "WINDOW_RESOLUTIONS", "velocity", "Derivatives", "NOISE_TO_SIGNAL", "ORDER", "WINDOWS", "acceleration_noise",
            "choose_window", "derivatives", "local_fit"]

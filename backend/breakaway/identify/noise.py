@@ -20,7 +20,7 @@ from math import comb
 
 import numpy as np
 
-from .kinematics import quantum
+from .kinematics import printed_unit, quantum
 
 _MAD_TO_STD = 1.4826
 #: Repeats give the floor when at least this share of rows (and 6) have a repeat.
@@ -29,6 +29,11 @@ MIN_REPLICATED_SHARE = 0.3
 COMMAND_RATIO = 0.1
 #: ... or below this share of the force scale.
 COMMAND_RELATIVE = 1e-6
+#: A force column with no noise above its resolution whose changes turn less often than
+#: this is programmed (noise turns half of the time or more).
+COMMAND_TURNS = 0.1
+#: Changes a column needs before their turns are counted.
+MIN_CHANGES = 20
 
 
 @dataclass
@@ -177,26 +182,45 @@ def noise_floor(problem) -> float:
     return estimate(problem).value
 
 
+def turn_share(values) -> float:
+    """Share of the nonzero changes of a column that turn against the previous nonzero
+    change: about 1/2 to 2/3 for noise of any size against the column's steps, near 0
+    for a programmed ramp, a sine or a held setpoint (it turns only at its extremes);
+    NaN with fewer than :data:`MIN_CHANGES` changes."""
+    steps = np.diff(np.asanyarray(values, dtype=float))
+    signs = np.sign(steps[steps != 0])
+    if signs.size < MIN_CHANGES:
+        return math.nan
+    return float(np.mean(signs[1:] != signs[:-1]))
+
+
 def command_floor(problem, noise: NoiseFloor, residual) -> NoiseFloor | None:
     """The floor when the force column is a noise-free command, else None.
 
-    The force is a command when its own differences are far smaller than those of the
-    base model's residual (the residual then carries the noise of x through the model),
-    or negligible against the force scale. The floor is then the residual's
-    differences estimate (never below the force quantisation).
+    The force is a command when it carries no noise above its own resolution: its
+    differences estimate is at most its last printed digit or its steps, and it turns
+    (goes up, then down) only where the programme does (:func:`turn_share` below
+    :data:`COMMAND_TURNS`): a programmed ramp, a setpoint held by a PLC, a DAC's steps.
+    Or its differences are far smaller than the base model's residual's (the residual
+    then carries the noise of x through the model), or negligible against the force
+    scale. The floor is then the residual's differences estimate (never below the
+    force quantisation); the noise of x through the model is added by the caller.
     """
     if problem.kind == "breakaway" or noise.method == "replicates":
         return None
     e_F = noise.smooth_F
     e_r = difference_sigma(residual, orderings(problem))
-    if not (math.isfinite(e_F) and math.isfinite(e_r) and e_r > 0):
+    if not (math.isfinite(e_F) and math.isfinite(e_r)):
         return None
-    if not (e_F < COMMAND_RATIO * e_r or e_F < COMMAND_RELATIVE * problem.scales.force):
+    resolution = max(printed_unit(problem.measured), noise.quantum_F)
+    programmed = e_F <= resolution and turn_share(problem.measured) < COMMAND_TURNS
+    quiet = e_r > 0 and (e_F < COMMAND_RATIO * e_r or e_F < COMMAND_RELATIVE * problem.scales.force)
+    if not (programmed or quiet):
         return None
     value = max(e_r, noise.quantum_F / math.sqrt(12))
     return NoiseFloor(value, "residual differences (force is a command)", noise.quantum_F,
                       e_F, 0, command=True)
 
 
-__all__ = ["NoiseFloor", "command_floor", "difference_sigma", "estimate", "noise_floor",
+__all__ = ["turn_share", "NoiseFloor", "command_floor", "difference_sigma", "estimate", "noise_floor",
            "orderings"]

@@ -9,7 +9,7 @@ from scipy.ndimage import uniform_filter1d
 
 from ...presliding import _presliding_kernel
 from ...steady import stribeck_kernel
-from ..derivatives import block_velocity, derivatives, smooth_fit
+from ..derivatives import block_velocity, derivatives, positions, smooth_fit
 from ..effects import engaged_presliding
 from ..kinematics import REVERSAL_STEPS, direction, position_noise, quantum
 from ..stickslip import find_stick_slip
@@ -40,7 +40,9 @@ class TimeseriesProblem(Problem):
 
     def __init__(self, data, effects=(), fixed=None, ties=None):
         cols = data.columns
-        self.t, self.x = cols["t"], cols["x"]
+        #: the positions as recorded, and (set with the kinematics) the positions the
+        #: model runs on: the same for exact x, a local fit of an encoder's counts
+        self.t, self.recorded_x = cols["t"], cols["x"]
         self.measured = cols["F"]
         #: independent records (blocks of a screened series): [start, stop) pairs
         edges = [0, *data.segments, data.n]
@@ -56,12 +58,13 @@ class TimeseriesProblem(Problem):
         """What every model of this record shares; computed once per dataset."""
         #: quantisation step and noise std of x (0: none), its resolution, and the
         #: reversal hysteresis: direction changes within a few resolutions are not real
-        self.quantum_x = quantum(self.x)
-        self.noise_x = position_noise(self.x) if self.quantum_x == 0 else 0.0
+        self.quantum_x = quantum(self.recorded_x)
+        self.noise_x = position_noise(self.recorded_x) if self.quantum_x == 0 else 0.0
         self.resolution_x = max(self.quantum_x, self.noise_x)
         self.hysteresis = REVERSAL_STEPS * self.resolution_x
         #: v and a, and how they were taken (MODEL.md §7 ``derivatives``)
-        self.derivatives = derivatives(self.t, self.x, self.quantum_x, self.noise_x,
+        self.x = self.model_positions(self.recorded_x)
+        self.derivatives = derivatives(self.t, self.recorded_x, self.quantum_x, self.noise_x,
                                        self.blocks)
         v, a = self.derivatives.v, self.derivatives.a
         with np.errstate(divide="ignore"):
@@ -77,10 +80,16 @@ class TimeseriesProblem(Problem):
             step=max(float(np.median(moving)) if moving.size else 1.0, self.quantum_x),
         )
         return {"quantum_x": self.quantum_x, "noise_x": self.noise_x,
-                "resolution_x": self.resolution_x, "hysteresis": self.hysteresis,
+                "resolution_x": self.resolution_x, "hysteresis": self.hysteresis, "x": self.x,
                 "derivatives": self.derivatives, "v": v,
                 "log_speed": log_speed, "a": a, "d": self.kinematic_direction(self.x),
                 "scales": scales}
+
+    def model_positions(self, recorded):
+        """The positions the model runs on for a record of these samples
+        (:func:`..derivatives.positions`, block by block)."""
+        return np.concatenate([positions(self.t[a:b], recorded[a:b], self.resolution_x)
+                               for a, b in self.blocks])
 
     def kinematic_velocity(self, x):
         """v of another position record of the same samples (the body behind a play, x
@@ -173,7 +182,7 @@ class TimeseriesProblem(Problem):
         dataset."""
         cached = _KINEMATICS[self.data]
         if "stick_slip" not in cached:
-            cached["stick_slip"] = find_stick_slip(self.t, self.x, self.measured)
+            cached["stick_slip"] = find_stick_slip(self.t, self.recorded_x, self.measured)
         return cached["stick_slip"]
 
     def presliding_fraction(self, params) -> np.ndarray:
@@ -222,8 +231,8 @@ class TimeseriesProblem(Problem):
     def _reading_error(self, params, window: int, seed: int) -> float:
         rng = np.random.default_rng(seed)
         smooth = np.concatenate([
-            smooth_fit(self.t[a:b], self.x[a:b], window)[0] if b - a >= window
-            else self.x[a:b] for a, b in self.blocks])
+            smooth_fit(self.t[a:b], self.recorded_x[a:b], window)[0] if b - a >= window
+            else self.recorded_x[a:b] for a, b in self.blocks])
         # the path's own reversals: any turn the reading could resolve at all
         exact = self.predict(params, smooth - self.x,
                              directions=self.kinematic_direction(smooth, 0.5 * self.resolution_x))
@@ -234,8 +243,10 @@ class TimeseriesProblem(Problem):
                 read = self.quantum_x * np.round((smooth - phase) / self.quantum_x) + phase
             else:
                 read = smooth + self.noise_x * rng.standard_normal(smooth.size)
-            errors.append(self.predict(params, read - self.x,
-                                       directions=self.kinematic_direction(read)) - exact)
+            # the reading goes through what this engine does with a record
+            path = self.model_positions(read)
+            errors.append(self.predict(params, path - self.x,
+                                       directions=self.kinematic_direction(path)) - exact)
         return float(np.sqrt(np.mean(np.square(errors))))
 
     def after_reversal(self, reach):
