@@ -15,9 +15,10 @@ Every kind and effect that needs v or a takes them from here.
   - a is the curvature of a quadratic (Savitzky–Golay,
     :func:`scipy.signal.savgol_filter`; the same fit in t where the sampling is
     uneven) over the narrowest window in which the error of x (``q/√12`` for steps of
-    q, the noise std otherwise) contributes at most :data:`NOISE_TO_SIGNAL` of a's RMS
-    (:func:`choose_window`): a wider window only smooths the signal, a narrower one
-    lets the counts through.
+    q, the noise std otherwise, or what a short local fit leaves of x when that is
+    larger: :func:`position_error`) contributes at most :data:`NOISE_TO_SIGNAL` of a's
+    RMS (:func:`choose_window`): a wider window only smooths the signal, a narrower
+    one lets the counts through.
 """
 
 from __future__ import annotations
@@ -301,6 +302,25 @@ def choose_window(t, x, resolution: float, order: int = ORDER) -> int:
     return fitting[-1]
 
 
+#: Samples of the local quadratic whose residual measures the error of x.
+ERROR_WINDOW = 9
+
+
+def position_error(t, x, quantum: float = 0.0, noise: float = 0.0) -> float:
+    """Std of the error of a recorded position [m]: the larger of what its steps or
+    noise imply (``q/√12``, the noise std) and what a local quadratic over
+    :data:`ERROR_WINDOW` samples leaves of x (a real encoder's record also carries the
+    rig's vibration and its electronics' jitter, which its steps do not show)."""
+    x = np.asanyarray(x, dtype=float)
+    implied = quantum / math.sqrt(12) if quantum > 0 else noise
+    if x.size < 2 * ERROR_WINDOW:
+        return implied
+    left = x - smooth_fit(t, x, ERROR_WINDOW)[0]
+    # a quadratic's fit takes 3 of the window's 9 degrees of freedom from white noise
+    seen = math.sqrt(float(np.mean(left**2)) / (1.0 - (ORDER + 1) / ERROR_WINDOW))
+    return max(implied, seen)
+
+
 def block_velocity(t, x, resolution: float, blocks) -> np.ndarray:
     """:func:`velocity` of each independent block of a record [m/s]."""
     return np.concatenate([velocity(t[i:j], x[i:j], resolution) for i, j in blocks])
@@ -334,9 +354,9 @@ def derivatives(t, x, quantum: float = 0.0, noise: float = 0.0, blocks=None,
         v = np.concatenate([np.gradient(x[i:j], t[i:j]) for i, j in blocks])
         a = np.concatenate([np.gradient(v[i:j], t[i:j]) for i, j in blocks])
         return Derivatives(v, a, "gradient", 3, 2, _span(v, np.gradient(t) * 2.0))
-    error = quantum / math.sqrt(12) if quantum > 0 else noise
     if window is None:
         first, last = max(blocks, key=lambda block: block[1] - block[0])
+        error = position_error(t[first:last], x[first:last], quantum, noise)
         window = choose_window(t[first:last], x[first:last], error)
     parts = [velocity_and_span(t[i:j], x[i:j], resolution) for i, j in blocks]
     v = np.concatenate([part[0] for part in parts])
@@ -355,5 +375,5 @@ def _span(v, spans) -> float:
     return float(np.median(spans[moving & (speed <= np.median(speed[moving]))]))
 
 
-__all__ = ["POSITION_RESOLUTIONS", "positions", "velocity_and_span", "smooth_fit", "block_velocity", "MAX_HALF_WINDOW", "WINDOW_RESOLUTIONS", "velocity", "Derivatives", "NOISE_TO_SIGNAL", "ORDER", "WINDOWS", "acceleration_noise",
+__all__ = ["position_error", "POSITION_RESOLUTIONS", "positions", "velocity_and_span", "smooth_fit", "block_velocity", "MAX_HALF_WINDOW", "WINDOW_RESOLUTIONS", "velocity", "Derivatives", "NOISE_TO_SIGNAL", "ORDER", "WINDOWS", "acceleration_noise",
            "choose_window", "derivatives", "local_fit"]

@@ -1,5 +1,5 @@
 """The search for the effects the data hold (MODEL.md §7): forward selection through
-:func:`.gates.gate` and the held-out error, pairs when no single effect passes (two
+:func:`.gates.gate`, the held-out error and the halves of a record (:mod:`.stability`), pairs when no single effect passes (two
 missing effects can each hide the other's gain), then a backward pass (drop an effect
 the others made redundant) and a swap pass (trade an accepted effect for a close rival
 that explains the data better)."""
@@ -20,6 +20,7 @@ from .indistinguishable import (
     viscous_or_detection,
 )
 from .residuals import is_white
+from .stability import unstable
 
 #: Evaluations per parameter of a candidate's screening fit.
 SCREEN_EVALUATIONS = 15
@@ -153,6 +154,10 @@ class Selection:
             heldout = self.heldout(trial)
             self.verdicts[effect].heldout = heldout
             if heldout < current_heldout:
+                shaky = unstable(self.data, trial, effect)
+                if shaky:
+                    self.verdicts[effect].reason = shaky
+                    continue
                 self.rivals |= {e for e, t in trials.items()
                                 if e != effect and t.bic <= trial.bic + MIN_BIC_DROP}
                 self.warnings += close_rivals(effect, trial,
@@ -215,7 +220,7 @@ class Selection:
             return None
         first, second, pair = best
         heldout = self.heldout(pair)
-        if heldout >= current_heldout:
+        if heldout >= current_heldout or any(unstable(self.data, pair, e) for e in (first, second)):
             return None
         first_fit = trials[first]
         note = f"; accepted together with {second}, which it masked"
@@ -261,7 +266,7 @@ class Selection:
                         EFFECTS[candidate].unresolved(trial.problem, trial.params):
                     continue
                 heldout = self.heldout(trial)
-                if heldout >= current_heldout:
+                if heldout >= current_heldout or unstable(self.data, trial, candidate):
                     continue
                 if candidate == "viscous-power" and effect == "viscous" and not \
                         power_is_preferred(trial, current, heldout, current_heldout)[0]:
