@@ -23,6 +23,11 @@ def lag_filter(v, t, tau):
     return out
 
 
+#: A lag's gain per row in presliding (z < 1) may be at most this many times its gain
+#: per row in sliding (a true lag's: 4-6 on strokes whose presliding it shapes too).
+MAX_PRESLIDING_CROWDING = 15.0
+
+
 class Lag(Effect):
     name = "lag"
     kinds = ("timeseries",)
@@ -35,6 +40,22 @@ class Lag(Effect):
         if params["tau"] <= span:
             return (f"a lag of {params['tau']:.3g} s is no longer than the time v is taken over "
                     f"({span:.3g} s): it cannot be told from how the velocity is measured")
+        # frictional lag acts in sliding and in presliding alike; a gain crowded into the
+        # rows right after reversals, where the presliding shape decides, is that
+        # shape's misfit
+        r_lag = pb.measured - pb.predict(params)
+        r_none = pb.measured - pb.predict({**params, "tau": 0.0})
+        gain = r_none**2 - r_lag**2
+        presliding = pb.presliding_fraction(params) < 1.0
+        if presliding.all() or not presliding.any():
+            return None
+        inside = float(np.mean(gain[presliding]))
+        outside = float(np.mean(gain[~presliding]))
+        if inside > MAX_PRESLIDING_CROWDING * max(outside, 0.0):
+            ratio = inside / outside if outside > 0 else math.inf
+            return (f"its gain per row right after reversals, where the shape of presliding "
+                    f"decides, is {ratio:.3g} times that in sliding: it stands in for that "
+                    f"shape, not for a lag of friction")
         return None
 
     def slip_velocity(self, pb, p, v):
