@@ -26,7 +26,7 @@ from .csvdata import Dataset
 from .effects import availability
 from .fitting import FitResult, fit_model, refit
 from .models import problem_for
-from .noise import NoiseFloor, command_floor, estimate
+from .noise import NoiseFloor, command_floor, estimate, programmed_force
 from .outliers import spike_rows
 from .preparation import SetAside, prepare, without_spikes
 from .residuals import is_white, residual_structure
@@ -91,8 +91,10 @@ def _diagnose(data: Dataset, progress, set_aside: SetAside | None = None,
     screened = needs_screening(data)
     full_problem, screen, screen_base, base = _base_fits(data, screened)
     noise = estimate(full_problem)
+    commanded = programmed_force(full_problem, noise)
+    # a commanded force has no glitches: its sharp changes were commanded
     spikes, scale = spike_rows(base.problem, base.residual(), noise.value)
-    if spikes.any():
+    if spikes.any() and not commanded:
         set_aside = set_aside or SetAside(data.n, base.rmse)
         set_aside.add(data, spikes, scale)
         data = without_spikes(data, spikes)
@@ -127,7 +129,7 @@ def _diagnose(data: Dataset, progress, set_aside: SetAside | None = None,
                       s.evidence, s.heldout) for s in steps]
     else:
         final = current
-    if carried is None and final.effects:
+    if carried is None and final.effects and not commanded:
         late, scale = spike_rows(final.problem, final.residual(), noise.value)
         if late.any():
             set_aside = set_aside or SetAside(data.n, base.rmse)
