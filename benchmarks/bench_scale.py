@@ -38,10 +38,19 @@ CHILD = textwrap.dedent("""
 """)
 
 
-def make_csv(rows: int, path: str) -> None:
+def make_csv(rows: int, path: str, count: float = 0.0) -> None:
+    """The seeded record, its positions read by an encoder of ``count`` [m] when given
+    (the measured-x path: the model's positions, a, the floor's x part)."""
+    from dataclasses import replace
+
+    import numpy as np
+
     from breakaway.identify.synthetic import make_dataset, to_csv
 
     data, _ = make_dataset("timeseries", ("viscous",), seed=3, n=rows)
+    if count:
+        data = replace(data, columns={**data.columns,
+                                      "x": np.round(data.columns["x"] / count) * count})
     with open(path, "w") as fh:
         fh.write(to_csv(data))
 
@@ -59,10 +68,13 @@ def main() -> None:
     args = parser.parse_args()
     with tempfile.TemporaryDirectory() as tmp:
         big, small = os.path.join(tmp, "big.csv"), os.path.join(tmp, "small.csv")
+        counts = os.path.join(tmp, "counts.csv")
         make_csv(args.rows, big)
+        make_csv(args.rows, counts, count=1e-6)
         make_csv(args.alternative_rows, small)
         size = os.path.getsize(big) / 1e6
         screened = run(big, "screen")
+        encoder = run(counts, "screen")
         plain = run(small, "plain")
     scale = args.rows / args.alternative_rows
     print(f"CPU cores: {os.cpu_count()}, Python {sys.version.split()[0]}")
@@ -72,6 +84,9 @@ def main() -> None:
           f"peak RSS {screened['peak_mb']:.0f} MB")
     print(f"  effects {screened['effects']}, RMSE {screened['rmse_before']:.4g} -> "
           f"{screened['rmse_after']:.4g} N, white {screened['white']}")
+    print(f"the same read by a 1 um encoder: parse + diagnosis {encoder['total_s']:.1f} s, "
+          f"peak RSS {encoder['peak_mb']:.0f} MB, effects {encoder['effects']}, RMSE "
+          f"{encoder['rmse_before']:.4g} -> {encoder['rmse_after']:.4g} N")
     print(f"without screening, {plain['rows']:,} rows: {plain['total_s']:.1f} s "
           f"(effects {plain['effects']}, peak RSS {plain['peak_mb']:.0f} MB); "
           f"x{scale:g} rows -> about {plain['total_s'] * scale:.0f} s")

@@ -20,6 +20,7 @@ from __future__ import annotations
 import time
 from dataclasses import dataclass, field
 
+import numpy as np
 from threadpoolctl import threadpool_limits
 
 from .csvdata import Dataset
@@ -38,6 +39,11 @@ from .warnings.fit import fit_warnings
 from .warnings.floor_low import UNEXPLAINED_RATIO, floor_low_warnings
 from .warnings.stick_slip import stick_slip_warnings
 from .warnings.travel import travel_warnings
+
+
+#: Spikes in a screened (long) record send the base model through its fits again only
+#: when they are more than this share of the rows.
+REFIT_SPIKE_SHARE = 1e-4
 
 
 @dataclass
@@ -98,7 +104,14 @@ def _diagnose(data: Dataset, progress, set_aside: SetAside | None = None,
         set_aside = set_aside or SetAside(data.n, base.rmse)
         set_aside.add(data, spikes, scale)
         data = without_spikes(data, spikes)
-        full_problem, screen, screen_base, base = _base_fits(data, screened, screen_base)
+        if np.count_nonzero(spikes) > REFIT_SPIKE_SHARE * data.n or not screened:
+            full_problem, screen, screen_base, base = _base_fits(data, screened, screen_base)
+        else:
+            # a handful of spikes in a long record moves no parameter: the fits keep
+            # their values, evaluated on the mended rows
+            full_problem = problem_for(data)
+            screen = screening_blocks(data, full_problem.d)
+            screen_base, base = _evaluate(screen, screen_base), _evaluate(data, base)
         noise = estimate(full_problem)
     noise = _with_position_noise(full_problem, noise, base)
     warnings = list(prepared) + data_warnings(full_problem, noise) \
