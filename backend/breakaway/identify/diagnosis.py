@@ -162,7 +162,7 @@ def _diagnose(data: Dataset, progress, set_aside: SetAside | None = None,
     warnings += search.warnings + beyond_data_warnings(beyond) + fit_warnings(final) \
         + travel_warnings(final, structure) + floor_low
     if set_aside is not None:
-        warnings.insert(len(prepared), set_aside.warning(data.kind))
+        warnings.insert(len(prepared), set_aside.warning(data.kind, data.unit("N")))
     report(1.0, "done")
     return Diagnosis(data, noise, base, final, steps, heldout_before, current_heldout,
                      white, unexplained, search.verdicts, warnings, structure,

@@ -78,7 +78,8 @@ def power_is_preferred(power, viscous, heldout_power: float,
                        f"({viscous.bic:.1f} against {power.bic:.1f})")
     if not heldout_power < heldout_viscous:
         return False, (f"n = {n:.3g} ± {se:.2g}, but the held-out error prefers viscous "
-                       f"({heldout_viscous:.4g} against {heldout_power:.4g} N)")
+                       f"({heldout_viscous:.4g} against {heldout_power:.4g} "
+                       f"{power.problem.data.unit('N')})")
     return True, (f"n = {n:.3g} ± {se:.2g} differs from 1 by {distance:.0f} standard "
                   f"errors, and the BIC and the held-out error prefer the curve")
 

@@ -65,7 +65,7 @@ class SetAside:
         self.lines.extend(int(line) for line in data.lines[spikes])
         self.spreads.extend(float(value) for value in scale[spikes])
 
-    def warning(self, kind: str) -> dict:
+    def warning(self, kind: str, unit: str = "N") -> dict:
         count = len(self.lines)
         lines = ", ".join(str(line) for line in sorted(self.lines)[:5])
         more = ", …" if count > 5 else ""
@@ -74,9 +74,9 @@ class SetAside:
         return warning("outliers", "F_ba" if kind == "breakaway" else "F", (
             f"{count} of {self.rows} rows (lines {lines}{more}) are isolated spikes, more "
             f"than {SPIKE_SIGMAS:g} times the residual's local spread "
-            f"({float(np.median(self.spreads)):.3g} N) from their neighbours: glitches of "
+            f"({float(np.median(self.spreads)):.3g} {unit}) from their neighbours: glitches of "
             f"the measurement, not friction; {done}, and the base model's RMSE with them "
-            f"was {self.base_rmse:.4g} N"))
+            f"was {self.base_rmse:.4g} {unit}"))
 
 
 __all__ = ["SetAside", "prepare", "subset", "without_spikes"]

@@ -134,7 +134,8 @@ class Selection:
 
     def _evidence(self, effect, current, trial, note=""):
         text = EFFECTS[effect].signature(current.problem, current.residual(), trial.params)
-        return (text + f"; with it the RMSE falls from {current.rmse:.4g} to {trial.rmse:.4g} N"
+        unit = self.data.unit("N")
+        return (text + f"; with it the RMSE falls from {current.rmse:.4g} to {trial.rmse:.4g} {unit}"
                 + f" and the BIC by {current.bic - trial.bic:.1f}" + note)
 
     def _choose(self, current, current_heldout, trials):
@@ -164,7 +165,8 @@ class Selection:
                                               [e for e in passing if e != effect], trials)
                 return [(effect, trial, heldout, self._evidence(effect, current, trial))]
             self.verdicts[effect].reason = (f"the held-out error rises from "
-                                            f"{current_heldout:.4g} to {heldout:.4g} N")
+                                            f"{current_heldout:.4g} to {heldout:.4g} "
+                                            f"{self.data.unit('N')}")
         return None
 
     def _settle_indistinguishable(self, passing, trials):

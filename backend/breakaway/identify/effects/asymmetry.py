@@ -34,8 +34,9 @@ class Asymmetry(Effect):
 
     def signature(self, pb, r, params):
         mp, mn = _direction_means(pb, r)
+        unit = pb.data.unit("N")
         if pb.kind == "breakaway":
-            return (f"the break-away force differs by direction: residual {_fmt(mp)} N for "
-                    f"direction +1 and {_fmt(mn)} N for direction -1")
+            return (f"the break-away force differs by direction: residual {_fmt(mp)} {unit} "
+                    f"for direction +1 and {_fmt(mn)} {unit} for direction -1")
         return (f"the sliding levels differ by direction: measured |F| minus the model's "
-                f"is {mp:+.3g} N moving positive and {-mn:+.3g} N moving negative")
+                f"is {mp:+.3g} {unit} moving positive and {-mn:+.3g} {unit} moving negative")

@@ -104,6 +104,8 @@ class Backlash(Effect):
         if after.any() and (~after).any():
             inside = math.sqrt(float(np.mean(r[after] ** 2)))
             outside = math.sqrt(float(np.mean(r[~after] ** 2)))
-            return (f"the residual concentrates right after reversals: RMS {_fmt(inside)} N "
-                    f"in the first part of each new stroke against {_fmt(outside)} N elsewhere")
+            unit = pb.data.unit("N")
+            return (f"the residual concentrates right after reversals: RMS {_fmt(inside)} {unit} "
+                    f"in the first part of each new stroke against {_fmt(outside)} {unit} "
+                    f"elsewhere")
         return "the residual concentrates right after reversals"

@@ -25,5 +25,6 @@ class Offset(Effect):
 
     def signature(self, pb, r, params):
         mp, mn = _direction_means(pb, r)
-        return (f"the residual has the same sign in both directions: mean {_fmt(mp)} N "
-                f"moving positive, {_fmt(mn)} N moving negative")
+        unit = pb.data.unit("N")
+        return (f"the residual has the same sign in both directions: mean {_fmt(mp)} {unit} "
+                f"moving positive, {_fmt(mn)} {unit} moving negative")

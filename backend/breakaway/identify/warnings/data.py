@@ -20,9 +20,10 @@ def data_warnings(problem, noise: NoiseFloor) -> list[dict]:
 
 def _quantised(problem, noise: NoiseFloor) -> list[dict]:
     out = []
+    unit = problem.data.unit("N")
     q_x = getattr(problem, "quantum_x", 0.0)
     if q_x > 0:
-        part = (f"; through the model they add {noise.from_x:.3g} N to the noise floor"
+        part = (f"; through the model they add {noise.from_x:.3g} {unit} to the noise floor"
                 if noise.from_x > 0 else "")
         out.append(warning("quantised", "x", (
             f"x takes steps of {q_x:.4g}: direction changes of up to {problem.hysteresis:.4g} "
@@ -32,20 +33,24 @@ def _quantised(problem, noise: NoiseFloor) -> list[dict]:
         floor = noise.quantum_F / math.sqrt(12)
         column = "F_ba" if problem.kind == "breakaway" else "F"
         out.append(warning("quantised", column, (
-            f"{column} takes steps of {noise.quantum_F:.4g} N: the noise floor is not taken "
-            f"below q/√12 = {floor:.4g} N")))
+            f"{column} takes steps of {noise.quantum_F:.4g} {unit}: the noise floor is not "
+            f"taken below q/√12 = {floor:.4g} {unit}")))
     return out
 
 
 def _command(problem, noise: NoiseFloor) -> list[dict]:
     if not noise.command:
         return []
+    unit, length = problem.data.unit("N"), problem.data.unit("m")
+    q_x, noise_x = getattr(problem, "quantum_x", 0.0), getattr(problem, "noise_x", 0.0)
+    error = (f"its steps of {q_x:.3g} {length}" if q_x > 0
+             else f"a noise std of about {noise_x:.3g} {length}")
     return [warning("force-is-command", "F", (
-        f"the force column is noise-free (differences estimate {noise.smooth_F:.3g} N): "
-        f"it is a command and the measurement noise sits in x (std about "
-        f"{getattr(problem, 'noise_x', 0.0):.3g}); the noise floor {noise.value:.4g} N is "
-        f"the larger of the base model's residual differences and that noise of x run "
-        f"through the model ({noise.from_x:.3g} N)"))]
+        f"the force column is a command, not a measurement (no noise above its resolution, "
+        f"differences estimate {noise.smooth_F:.3g} {unit}): the measurement error sits in x "
+        f"({error}); the noise floor {noise.value:.4g} {unit} is the larger of the base "
+        f"model's residual differences and that error of x run through the model "
+        f"({noise.from_x:.3g} {unit})"))]
 
 
 def _one_direction(problem) -> list[dict]:
