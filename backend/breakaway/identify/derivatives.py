@@ -187,7 +187,7 @@ class Derivatives:
     def entry(self) -> dict:
         """The report's ``derivatives`` object (MODEL.md §8), with how v was taken."""
         velocity_text = ("numpy.gradient" if self.method == "gradient" else
-                         f"local slope over the narrowest window in which x moves "
+                         f"local slope over the narrowest window over which x spans "
                          f"{WINDOW_RESOLUTIONS} resolutions")
         return {"method": self.method, "window": int(self.window), "order": int(self.order),
                 "velocity": velocity_text}

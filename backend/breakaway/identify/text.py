@@ -31,6 +31,13 @@ def format_report(report: dict, source: str | None = None) -> str:
     method = report.get("noise_method")
     lines.append(f"noise floor: {report['noise_floor']:.4g} {N}"
                  + (f", from {method}" if method else ""))
+    derivatives = report.get("derivatives")
+    if derivatives:
+        if derivatives["method"] == "gradient":
+            lines.append("v and a: numpy.gradient (x taken as exact)")
+        else:
+            lines.append(f"a: a Savitzky-Golay polynomial of order {derivatives['order']} over "
+                         f"{derivatives['window']} samples; v: {derivatives['velocity']}")
     lines.append("")
     base = report["base"]
     lines.append(f"base model: RMSE {base['rmse']:.4g} {N}, BIC {base['bic']:.1f}")
