@@ -161,8 +161,10 @@ class Selection:
                     continue
                 self.rivals |= {e for e, t in trials.items()
                                 if e != effect and t.bic <= trial.bic + MIN_BIC_DROP}
-                self.warnings += close_rivals(effect, trial,
-                                              [e for e in passing if e != effect], trials)
+                # rivals: the other passing candidates not turned away on the way here
+                rivals = [e for e in passing if e != effect and self.verdicts[e].reason is None
+                          and trials[e].bic >= trial.bic]
+                self.warnings += close_rivals(effect, trial, rivals, trials)
                 return [(effect, trial, heldout, self._evidence(effect, current, trial))]
             self.verdicts[effect].reason = (f"the held-out error rises from "
                                             f"{current_heldout:.4g} to {heldout:.4g} "
