@@ -24,6 +24,9 @@ export function paramSpec(name) {
   return PARAMS.find((spec) => spec.name === name);
 }
 
+/** Arrow keys on a focused slider: one position up or down. */
+export const KEY_STEP = { ArrowRight: 1, ArrowUp: 1, ArrowLeft: -1, ArrowDown: -1 };
+
 export const F_HAT_CHOICES = ["Fc", "Fs", "avg", "self"];
 export const MIN_ABS_DELTA = 0.05;
 
@@ -197,4 +200,23 @@ export function showErrors(errors) {
     range.setAttribute("aria-invalid", message ? "true" : "false");
     box.closest(".control").classList.toggle("invalid", Boolean(message));
   }
+}
+
+/** `state` with `spec`'s slider at `position` (and Fs/Fc coupled); true when the other
+ *  of Fs and Fc moved. */
+export function moveSlider(state, spec, position) {
+  state[spec.name] = sliderToValue(spec, position);
+  return couple(state, spec.name);
+}
+
+/** Keep Fs ≥ Fc as the person edits one of them in `state`: the other follows
+ *  (MODEL.md §1). True when it moved. */
+export function couple(state, name) {
+  const Fc = parseNumber(state.Fc);
+  const Fs = parseNumber(state.Fs);
+  if (!(Fc > 0 && Fs > 0) || Fs >= Fc) return false;
+  if (name === "Fc") state.Fs = Fc;
+  else if (name === "Fs") state.Fc = Fs;
+  else return false;
+  return true;
 }
