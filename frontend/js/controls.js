@@ -24,9 +24,6 @@ export function paramSpec(name) {
   return PARAMS.find((spec) => spec.name === name);
 }
 
-/** Arrow keys on a focused slider: one position up or down. */
-export const KEY_STEP = { ArrowRight: 1, ArrowUp: 1, ArrowLeft: -1, ArrowDown: -1 };
-
 export const F_HAT_CHOICES = ["Fc", "Fs", "avg", "self"];
 export const MIN_ABS_DELTA = 0.05;
 

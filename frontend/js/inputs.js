@@ -3,14 +3,14 @@
 // entries (store.js), and Back and Forward walk through them.
 
 import {
-  KEY_STEP, PARAMS, couple, moveSlider, parseNumber, writeControls,
+  PARAMS, couple, moveSlider, parseNumber, validate, writeControls,
 } from "./controls.js";
 import { onSchemeChange } from "./draw.js";
 import { exportCsv, exportPng } from "./export.js";
-import { redraw, refresh } from "./render.js";
+import { redraw, refresh, settleNow } from "./render.js";
 import { defaultState, fromQuery, presetState } from "./state.js";
 import { $, app, commit } from "./store.js";
-import { drawView } from "./viewrequests.js";
+import { drawView, prefetchViews } from "./viewrequests.js";
 import { requestViews } from "./views.js";
 
 /** Show `state`: into the controls, the history (unless `push` is false), the plots. */
@@ -28,30 +28,70 @@ function restyle() {
   for (const view of requestViews()) drawView(view.id);
 }
 
+/** Where a key moves a range input: one position, a tenth of the range, the ends (as
+ *  the browser does; the page moves it itself, so that the plots follow at once). */
+export function keyTarget(key, range) {
+  const value = Number(range.value);
+  const min = Number(range.min);
+  const max = Number(range.max);
+  const tenth = Math.max(1, Math.round((max - min) / 10));
+  const moves = {
+    ArrowRight: value + 1, ArrowUp: value + 1, ArrowLeft: value - 1, ArrowDown: value - 1,
+    PageUp: value + tenth, PageDown: value - tenth, Home: min, End: max,
+  };
+  return key in moves ? Math.min(max, Math.max(min, moves[key])) : null;
+}
+
+/** The states one key press away on `spec`'s slider, on either side. */
+function neighbours(spec, range) {
+  const out = [];
+  for (const step of [-1, 1]) {
+    const position = Number(range.value) + step;
+    if (position < Number(range.min) || position > Number(range.max)) continue;
+    const state = { ...app.state };
+    moveSlider(state, spec, position);
+    if (!Object.keys(validate(state)).length) out.push(state);
+  }
+  return out;
+}
+
 function wireParameters() {
   for (const spec of PARAMS) {
     const box = $(spec.name);
     const range = $(`${spec.name}-range`);
-    range.addEventListener("input", () => {
+    const moved = () => {
       const coupled = moveSlider(app.state, spec, range.value);
       box.value = String(app.state[spec.name]);
       if (coupled) writeControls(app.state, { except: range });
-      refresh();
-    });
+      refresh({ hold: true });
+    };
+    range.addEventListener("input", moved);
     range.addEventListener("keydown", (event) => {
-      const step = KEY_STEP[event.key];
-      app.lastStep = step ? { spec, step } : null;
+      if (event.altKey || event.ctrlKey || event.metaKey) return;
+      const target = keyTarget(event.key, range);
+      if (target === null) return;
+      event.preventDefault();
+      if (target !== Number(range.value)) {
+        range.value = String(target);
+        moved();
+        commit();
+      }
+      // the next press either way needs no wait for what only a request can draw
+      prefetchViews(neighbours(spec, range));
     });
-    range.addEventListener("pointerdown", () => { app.lastStep = null; });
     box.addEventListener("input", () => {
       const value = parseNumber(box.value);
       app.state[spec.name] = Number.isNaN(value) ? box.value : value;
       couple(app.state, spec.name);
       writeControls(app.state, { except: box });
-      refresh();
+      refresh({ hold: true });
     });
-    range.addEventListener("change", commit);
-    box.addEventListener("change", commit);
+    for (const control of [range, box]) {
+      control.addEventListener("change", () => {
+        commit();
+        settleNow();
+      });
+    }
   }
 }
 

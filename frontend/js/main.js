@@ -18,16 +18,16 @@ import { setState, wireControls } from "./inputs.js";
 import { wireLessons } from "./lessons.js";
 import "./modelviews.js";
 import { wireRamp } from "./rampview.js";
-import { aheadDrawn, refresh, showServerError } from "./render.js";
+import { SETTLE_MS, refresh, showServerError } from "./render.js";
 import { wireSimulation } from "./simulation.js";
 import { fromQuery, toQuery } from "./state.js";
 import {
   $, app, setBusy, updateSimBusy, whenIdle,
 } from "./store.js";
-import { surfaceStats, addAheadGraphs } from "./surfaces.js";
+import { surfaceStats } from "./surfaces.js";
 import { withTraces } from "./teach.js";
 import { viewsBusy } from "./viewrequests.js";
-import { frameViewIds, registerOverlay } from "./views.js";
+import { registerOverlay } from "./views.js";
 
 /** The measured points of a fit, on the plot that matches the data's kind. */
 registerOverlay((figures) => {
@@ -96,7 +96,6 @@ async function init() {
   const response = await getJSON("/api/presets");
   setParams(response.parameters);
   buildControls(document);
-  addAheadGraphs(frameViewIds());
   wireTabs();
   initDataPanel({ applyParams: applyFitted });
   app.defaults = response.defaults;
@@ -128,19 +127,17 @@ window.breakaway = {
   },
   /** A copy of the current state. */
   state: () => JSON.parse(JSON.stringify(app.state)),
-  /** Completed redraws, and the last one's duration (input to plots drawn) [ms]. */
+  /** States shown so far (live or settled), and the last settle's duration [ms]. */
   frames: () => app.frames,
-  /** Frames that a key press found asked for ahead; `prefetch(false)` stops asking
-   *  ahead (the benchmark's alternative). */
-  prefetchHits: () => app.prefetchHits,
-  prefetch: (on) => { app.prefetchOn = Boolean(on); app.ahead = null; },
-  /** `drawAhead(false)`: the frame is asked for ahead but not drawn ahead. */
-  drawAhead: (on) => { app.drawAheadOn = Boolean(on); },
-  /** Counts per plot: Plotly calls on the shown graphs (`reacts`), plots shown from the
-   *  graph drawn ahead (`swaps`), graphs drawn ahead (`drawnAhead`). */
+  /** `live(false)`: no live frames; every change is drawn by Plotly.react as it comes
+   *  (the benchmark's alternative). */
+  live: (on) => { app.liveOn = Boolean(on); },
+  /** How long a hand must rest before the settled drawing [ms]. */
+  settleMs: SETTLE_MS,
+  /** Counts: Plotly.react calls (`reacts`), plots drawn live on their canvas (`live`). */
   surfaces: () => ({ ...surfaceStats }),
-  /** True once the next arrow step's four plots are drawn (ahead, or already shown). */
-  aheadDrawn,
+  /** The parameters of the answer view `id` (the ramp) shows, or null. */
+  viewParams: (id) => app.results[id]?.value?.params ?? null,
   lastRedrawMs: () => app.lastRedrawMs,
   /** Resolves once the data panel runs no fit; the finished fit's report (or null). */
   fitReady,

@@ -1,84 +1,153 @@
 // The explorer's one render path:
-//   state → validate (MODEL.md §1) → one POST /api/explore (the previous one aborted)
-//         → pure figure builders (the views of views.js) → the plots whose figure
-//         changed (surfaces.js: Plotly.react, or the graph drawn ahead for this step).
-// What hangs off a drawn frame (the simulations, the views with requests of their own)
-// listens through onFrameDrawn / onStateLeft, so this module knows none of them.
+//   state → validate (MODEL.md §1) → a frame → pure figure builders (the views of
+//   views.js) → the plots, in two steps:
+//   live     at the next animation frame, the model's curves computed in the page
+//            (model.js) drawn on a canvas in each plot's own axes (surfaces.js): what a
+//            hand on a slider sees, 30 and more frames a second;
+//   settled  once the hand stops (at once for a menu, a preset, a released slider): one
+//            POST /api/explore (the previous one aborted), drawn by Plotly.react, one
+//            plot per task so that a key or a pointer can come in between.
+// `#plots` data-frame counts the states shown (live or settled), data-ready="true" says
+// the settled plots show the current state. What hangs off a settled frame (the
+// simulations, the views with requests of their own) listens through onFrameDrawn and
+// onStateLeft, so this module knows none of them.
 
 import { ApiError, postJSON } from "./api.js";
-import { moveSlider, showErrors, validate } from "./controls.js";
+import { showErrors, validate } from "./controls.js";
 import { PLOT_CONFIG, pageStyle } from "./draw.js";
+import { modelFrame } from "./model.js";
 import { styled } from "./plots.js";
 import { exploreBody, matchingPreset } from "./state.js";
 import { $, app, setBusy, updateSimBusy } from "./store.js";
-import { drawAhead, holds, show } from "./surfaces.js";
+import { live, settle } from "./surfaces.js";
 import { frameViewIds, pageFigures } from "./views.js";
 
 /** The explorer's plots export through the page's own buttons (CSV, PNG). */
 export const EXPLORER_CONFIG = {
   modeBarButtonsToRemove: [...PLOT_CONFIG.modeBarButtonsToRemove, "toImage"],
 };
+/** A hand that gives no input for this long has stopped [ms]: a held arrow key repeats
+ *  every 33 ms, a person pressing keys one by one does so 100–300 ms apart. */
+export const SETTLE_MS = 250;
 
 const listeners = { left: [], drawn: [] };
 
-/** Call `fn()` whenever the state the page showed is left for another. */
+/** Call `fn({frameChanged})` whenever the state the page showed is left for another;
+ *  `frameChanged` false when the model's curves stay (the mass m moved). */
 export function onStateLeft(fn) {
   listeners.left.push(fn);
 }
 
-/** Call `fn()` once the frame of a new state is drawn. */
+/** Call `fn()` once the frame of a new state is drawn and settled. */
 export function onFrameDrawn(fn) {
   listeners.drawn.push(fn);
 }
 
-function notify(kind) {
-  for (const fn of listeners[kind]) fn();
+function notify(kind, detail) {
+  for (const fn of listeners[kind]) fn(detail);
 }
 
-/** The state changed: draw it (or show why it cannot be). */
-export function refresh() {
+const nextTask = () => new Promise((resolve) => { setTimeout(resolve); });
+
+/**
+ * The state changed: draw it (or show why it cannot be). `hold`: the change comes from
+ * a moving hand (a slider, a key, typing), so the settled drawing waits until it stops.
+ */
+export function refresh({ hold = false } = {}) {
   const errors = validate(app.state);
   showErrors(errors);
   hideServerError();
   updatePresetSelect();
   app.version += 1;
-  const version = app.version;
+  clearTimeout(app.settleTimer);
+  app.settleTimer = null;
   if (app.exploreController) app.exploreController.abort();
   app.exploreController = null;
   if (Object.keys(errors).length) {
-    notify("left");
+    notify("left", { frameChanged: true });
     $("plots").dataset.valid = "false";
     setBusy(false);
     updateSimBusy();
     return;
   }
   $("plots").dataset.valid = "true";
-  const controller = new AbortController();
-  app.exploreController = controller;
+  const frameChanged = JSON.stringify(exploreBody(app.state)) !== app.frameKey;
   setBusy(true);
   // the pending simulations are for the state just left: drop them now, so they do not
-  // compete with this frame (they are scheduled again once it is drawn)
-  notify("left");
+  // compete with this frame (they are scheduled again once it is settled)
+  notify("left", { frameChanged });
+  app.holdUntil = hold && app.liveOn ? performance.now() + SETTLE_MS : 0;
+  if (app.liveOn && app.frames > 0 && !app.liveRequest) {
+    app.liveRequest = requestAnimationFrame(drawLiveFrame);
+  }
+  settleLater(app.version);
+}
+
+/** The hand has stopped (a slider released, a number box left): settle now. */
+export function settleNow() {
+  if (!app.holdUntil) return;
+  app.holdUntil = 0;
+  if (app.settleTimer) settleLater(app.version);
+}
+
+function settleLater(version) {
+  clearTimeout(app.settleTimer);
+  app.settleTimer = null;
+  const wait = app.holdUntil - performance.now();
+  if (wait > 0) app.settleTimer = setTimeout(() => settleLater(version), wait);
+  else settleFrame(version);
+}
+
+/** The curves of the current state for a live frame: the server's frame when it is
+ *  for these curves already (only m moved), else computed here. */
+function liveFrame() {
+  const body = exploreBody(app.state);
+  const key = JSON.stringify(body);
+  if (app.frame && key === app.frameKey) return app.frame;
+  if (app.liveCache?.key !== key) app.liveCache = { key, frame: modelFrame(body) };
+  return app.liveCache.frame;
+}
+
+function drawLiveFrame() {
+  app.liveRequest = null;
+  const version = app.version;
+  if (!app.busy || app.shownVersion === version || $("plots").dataset.valid === "false") return;
+  const figs = pageFigures(liveFrame(), app.state);
+  for (const id of frameViewIds()) live(id, styled(figs[id], pageStyle()));
+  app.shownVersion = version;
+  app.frames += 1;
+  $("plots").dataset.frame = String(app.frames);
+}
+
+/** True while the plots show a live frame that has not settled yet. */
+function showingLive() {
+  return app.busy && app.liveOn && app.shownVersion === app.version;
+}
+
+function settleFrame(version) {
   const started = performance.now();
   const body = exploreBody(app.state);
   const key = JSON.stringify(body);
+  const controller = new AbortController();
+  app.exploreController = controller;
   // a change the model's curves do not depend on (the mass m) needs no new frame
-  const frameAsked = app.frame && key === app.frameKey
+  const asked = app.frame && key === app.frameKey
     ? Promise.resolve(app.frame)
-    : frameFor(body, key, controller.signal);
-  frameAsked
+    : postJSON("/api/explore", body, controller.signal);
+  asked
     .then(async (frame) => {
       if (version !== app.version) return;
       app.frame = frame;
       app.frameKey = key;
-      await redraw();
-      if (version !== app.version) return;
-      app.frames += 1;
+      if (!await drawSettled(version) || version !== app.version) return;
+      if (app.shownVersion !== version) {
+        app.shownVersion = version;
+        app.frames += 1;
+      }
       app.lastRedrawMs = performance.now() - started;
       app.exploreController = null;
       setBusy(false);
       notify("drawn");
-      prefetchNextStep();
     })
     .catch((error) => {
       if (error.name === "AbortError" || version !== app.version) return;
@@ -89,95 +158,36 @@ export function refresh() {
     });
 }
 
-/** The frame for an explore body: the one asked for ahead of this key press when there
- *  is one (a failed one is asked for again), else a new request. */
-function frameFor(body, key, signal) {
-  const { ahead } = app;
-  app.ahead = null;
-  if (ahead?.key !== key) return postJSON("/api/explore", body, signal);
-  app.prefetchHits += 1;
-  return ahead.asked.catch(() => postJSON("/api/explore", body, signal));
-}
-
-/**
- * A person stepping a slider with the arrow keys presses the same key again: ask for
- * that next position's frame now, at low priority, so the key press finds it here and
- * waits only for the drawing (benchmarks/bench_page.py: about a fifth of a key press).
- * One request per drawn frame, and only while a slider has the keyboard.
- */
-function prefetchNextStep() {
-  const last = app.lastStep;
-  const range = document.activeElement;
-  if (!app.prefetchOn || !last || range?.id !== `${last.spec.name}-range`) return;
-  const position = Number(range.value) + last.step;
-  if (position < Number(range.min) || position > Number(range.max)) return;
-  const next = { ...app.state };
-  moveSlider(next, last.spec, position);
-  if (Object.keys(validate(next)).length) return;
-  const body = exploreBody(next);
-  const key = JSON.stringify(body);
-  // a step the quasi-static curves do not see (the mass m) needs no frame
-  if (key === app.frameKey) return;
-  const asked = postJSON("/api/explore", body, undefined, "low");
-  const ahead = { key, asked, state: next, frame: null };
-  app.ahead = ahead;
-  // a failed one is asked for again when its key is pressed
-  asked.then((frame) => {
-    ahead.frame = frame;
-    scheduleDrawAhead();
-  }, () => {});
-}
-
-/** Draw the next arrow step's plots into the hidden graphs while the page has nothing
- *  else to do, one plot per task (a key press waits for one at most); and again when
- *  what they would show changed (a simulation came in, the style changed). */
-function scheduleDrawAhead() {
-  if (!app.drawAheadOn || app.aheadTimer) return;
-  app.aheadTimer = setTimeout(drawNextAhead);
-}
-
-function drawNextAhead() {
-  app.aheadTimer = null;
-  const { ahead } = app;
-  // while busy, the frame being drawn asks for its own next step; while playing, the
-  // phase plot changes every animation frame
-  if (app.busy || app.playing || !ahead?.frame || ahead !== app.ahead) return;
-  const figs = aheadFigures();
-  for (const id of frameViewIds()) {
-    const drawing = drawAhead(id, figs[id], EXPLORER_CONFIG);
-    if (drawing) {
-      // a graph that failed to draw ahead is drawn when it is needed
-      drawing.then(scheduleDrawAhead, () => {});
-      return;
-    }
+/** Plotly draws the current frame's views; between two plots a key or a pointer may
+ *  come (then false: a newer state is on its way). */
+async function drawSettled(version) {
+  const figs = pageFigures(app.frame, app.state);
+  const ids = frameViewIds();
+  if (!app.liveOn || app.frames === 0) {
+    await Promise.all(ids.map((id) => showPlot(id, figs[id])));
+    return version === app.version;
   }
+  for (const id of ids) {
+    await nextTask();
+    if (version !== app.version) return false;
+    await settle(id, styled(figs[id], pageStyle()), EXPLORER_CONFIG, () => version === app.version);
+  }
+  return version === app.version;
 }
 
-/** The next arrow step's figures, styled as the page is shown now (null until its
- *  frame is here). */
-function aheadFigures() {
-  const { ahead } = app;
-  if (!ahead?.frame) return null;
-  const figs = pageFigures(ahead.frame, ahead.state);
-  return Object.fromEntries(frameViewIds().map((id) => [id, styled(figs[id], pageStyle())]));
-}
-
-/** True once the next arrow step's plots are drawn (ahead, or already shown). */
-export function aheadDrawn() {
-  const figs = aheadFigures();
-  return Boolean(figs) && frameViewIds().every((id) => holds(id, figs[id]));
-}
-
-/** Show a figure on plot `id`, styled as the page is shown now; what is left drawn
- *  ahead may no longer be what the next step shows. */
+/** Show a figure on plot `id`, styled as the page is shown now: live while the plots
+ *  show a live frame, else with Plotly. */
 export function showPlot(id, plain) {
-  return show(id, styled(plain, pageStyle()), EXPLORER_CONFIG).then(scheduleDrawAhead);
+  const figure = styled(plain, pageStyle());
+  if (showingLive() && live(id, figure)) return Promise.resolve();
+  return settle(id, figure, EXPLORER_CONFIG);
 }
 
-/** Draw the current frame's views (all, or those in `ids`). */
+/** Draw the current frame's views again (all, or those in `ids`): a simulation came,
+ *  the style or an overlay changed. */
 export function redraw(ids = frameViewIds()) {
   if (!app.frame) return Promise.resolve();
-  const figs = pageFigures(app.frame, app.state, ids);
+  const figs = pageFigures(showingLive() ? liveFrame() : app.frame, app.state, ids);
   return Promise.all(ids.map((id) => showPlot(id, figs[id])));
 }
 

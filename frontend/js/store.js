@@ -14,15 +14,14 @@ export const app = {
   state: null,
   frame: null,
   frameKey: null, // the /api/explore body the frame answers
-  ahead: null, // {key, asked, state, frame}: the next arrow step, its /api/explore body
-  // and the answer asked for (the frame once it is here)
-  prefetchOn: true,
-  drawAheadOn: true,
-  aheadTimer: null, // the next plot to draw ahead
-  prefetchHits: 0,
-  lastStep: null, // {spec, step}: the last arrow key on a slider
-  frames: 0,
-  version: 0,
+  liveOn: true, // live frames while a hand moves (off: every change drawn by Plotly)
+  liveCache: null, // {key, frame}: the curves computed in the page for the last live frame
+  liveRequest: null, // the animation frame that draws the next live frame
+  holdUntil: 0, // the settled drawing waits until then (the hand is moving) [ms]
+  settleTimer: null,
+  frames: 0, // states shown, live or settled
+  shownVersion: -1, // the state version the plots show
+  version: 0, // each state change
   exploreController: null,
   busy: true,
   commitPending: false, // a history entry waits for its frame to be drawn
@@ -76,7 +75,7 @@ export function setBusy(busy) {
 /** Whether a simulation is due, waiting or running; flushes "sim" once none is. */
 export function updateSimBusy() {
   // a frame on its way schedules the simulation when it is drawn
-  const frameDue = app.busy && Boolean(app.state?.sim) && Boolean(app.exploreController || app.frames === 0);
+  const frameDue = app.busy && Boolean(app.state?.sim);
   app.simBusy = Boolean(app.simTimer || app.simController || app.lugreController || frameDue);
   $("plots").dataset.simReady = app.simBusy ? "false" : "true";
   if (!app.simBusy) flush("sim");

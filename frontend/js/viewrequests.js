@@ -1,17 +1,27 @@
 // The views that draw the answer of a request of their own (views.js: `request`), such
-// as the ramp experiment: asked for once a state's frame is drawn, after the view's
-// debounce, the previous request aborted; an answer for the state shown is not asked
-// for again. Each answer drawn counts in #plots data-<id>-frame.
+// as the ramp experiment. Two ways to be asked:
+//   settled  once a state's frame is settled, after the view's debounce, the previous
+//            request aborted (a slider that moves the model's curves: the view follows
+//            when the hand stops, as the simulations do);
+//   live     at once, when a change leaves the model's curves as they are (the mass m):
+//            then this view is what the hand explores. One request in flight; a hand
+//            that moved on meanwhile is asked for when it lands, so a drag never starves.
+// A key press asks ahead for the answers one press away on either side. An answer for
+// the state shown is not asked for again. Each answer drawn counts in #plots
+// data-<id>-frame.
 
 import { postJSON } from "./api.js";
 import { onFrameDrawn, onStateLeft, redraw, showPlot } from "./render.js";
+import { exploreBody } from "./state.js";
 import { $, app, flush } from "./store.js";
 import { requestViews, viewOf } from "./views.js";
 
-const runs = {}; // view id -> {timer, controller, frames}
+const AHEAD_KEPT = 8;
+const runs = {}; // view id -> {timer, controller, key (asked for), again, frames}
+const ahead = new Map(); // "<view id> <key>" -> the answer asked for ahead of a key press
 
 function run(id) {
-  runs[id] ??= { timer: null, controller: null, frames: 0 };
+  runs[id] ??= { timer: null, controller: null, key: null, again: false, frames: 0 };
   return runs[id];
 }
 
@@ -35,32 +45,27 @@ function cancel(view) {
   const entry = run(view.id);
   clearTimeout(entry.timer);
   entry.timer = null;
+  entry.again = false;
   if (entry.controller) entry.controller.abort();
   entry.controller = null;
   if (!viewsBusy()) flush("views");
 }
 
-function schedule(view) {
-  if (!app.frame) return;
-  const result = app.results[view.id];
-  if (result && result.key === keyOf(view, app.state)) {
-    drawView(view.id);
-    return;
-  }
-  const entry = run(view.id);
-  clearTimeout(entry.timer);
-  entry.timer = setTimeout(() => ask(view), view.request.debounceMs ?? 0);
+function answerFor(view, key, body, signal) {
+  const asked = ahead.get(`${view.id} ${key}`);
+  if (!asked) return postJSON(view.request.url, body, signal);
+  ahead.delete(`${view.id} ${key}`);
+  return asked.catch(() => postJSON(view.request.url, body, signal));
 }
 
-async function ask(view) {
+async function ask(view, state) {
   const entry = run(view.id);
-  entry.timer = null;
   if (entry.controller) entry.controller.abort();
   const controller = new AbortController();
-  entry.controller = controller;
-  const key = keyOf(view, app.state);
+  const key = keyOf(view, state);
+  Object.assign(entry, { controller, key, again: false });
   try {
-    const value = await postJSON(view.request.url, view.request.body(app.state), controller.signal);
+    const value = await answerFor(view, key, view.request.body(state), controller.signal);
     if (controller !== entry.controller) return;
     app.results[view.id] = { key, value };
     view.onResult?.(value);
@@ -73,7 +78,58 @@ async function ask(view) {
   }
   if (controller === entry.controller) {
     entry.controller = null;
+    entry.key = null;
+    if (entry.again) askLive(view);
     if (!viewsBusy()) flush("views");
+  }
+}
+
+/** Ask at once for the current state, unless its answer is here or on its way. */
+function askLive(view) {
+  const entry = run(view.id);
+  clearTimeout(entry.timer);
+  entry.timer = null;
+  const key = keyOf(view, app.state);
+  if (app.results[view.id]?.key === key) {
+    drawView(view.id);
+  } else if (entry.controller) {
+    entry.again = entry.key !== key;
+  } else {
+    ask(view, app.state);
+  }
+}
+
+/** Once a state's frame is settled: its answer drawn, or asked for after the debounce. */
+function schedule(view) {
+  if (!app.frame) return;
+  const key = keyOf(view, app.state);
+  const entry = run(view.id);
+  if (app.results[view.id]?.key === key) {
+    drawView(view.id);
+    return;
+  }
+  if (entry.controller && entry.key === key) return;
+  clearTimeout(entry.timer);
+  entry.timer = setTimeout(() => {
+    entry.timer = null;
+    ask(view, app.state);
+  }, view.request.debounceMs ?? 0);
+}
+
+/** Ask ahead, at low priority, for the answers of `states` (a key press away) that only
+ *  the views' requests can draw (their model curves are the ones shown). */
+export function prefetchViews(states) {
+  for (const view of requestViews()) {
+    for (const state of states) {
+      if (JSON.stringify(exploreBody(state)) !== app.frameKey) continue;
+      const key = keyOf(view, state);
+      const name = `${view.id} ${key}`;
+      if (app.results[view.id]?.key === key || ahead.has(name)) continue;
+      const asked = postJSON(view.request.url, view.request.body(state), undefined, "low");
+      asked.catch(() => {}); // a failed one is asked for again when its key is pressed
+      ahead.set(name, asked);
+      if (ahead.size > AHEAD_KEPT) ahead.delete(ahead.keys().next().value);
+    }
   }
 }
 
@@ -87,7 +143,11 @@ export function drawView(id) {
   return Promise.all([showPlot(id, figure), redraw(view.redraws ?? [])]);
 }
 
-// a request for the state just left is dropped; the new state's is asked for once its
-// frame is drawn
-onStateLeft(() => requestViews().forEach(cancel));
+// a request for a state whose curves were left is dropped (the new state's is asked for
+// once its frame is settled); when the curves stay, the views are what moved
+onStateLeft(({ frameChanged }) => {
+  for (const view of requestViews()) {
+    if (frameChanged) cancel(view); else askLive(view);
+  }
+});
 onFrameDrawn(() => requestViews().forEach(schedule));
