@@ -27,8 +27,12 @@ export const EXPLORER_CONFIG = {
   modeBarButtonsToRemove: [...PLOT_CONFIG.modeBarButtonsToRemove, "toImage"],
 };
 /** A hand that gives no input for this long has stopped [ms]: a held arrow key repeats
- *  every 33 ms, a person pressing keys one by one does so 100–300 ms apart. */
+ *  every 33 ms, a drag's inputs come every 16 ms. A person pressing keys one by one in a
+ *  rhythm (a gap under RHYTHM_MS) has stopped once 1.5 gaps pass without a press, up to
+ *  HOLD_MAX_MS: a press landing on the settled drawing waits for one Plotly.react. */
 export const SETTLE_MS = 250;
+const RHYTHM_MS = 1000;
+const HOLD_MAX_MS = 750;
 
 const listeners = { left: [], drawn: [] };
 
@@ -76,11 +80,18 @@ export function refresh({ hold = false } = {}) {
   // the pending simulations are for the state just left: drop them now, so they do not
   // compete with this frame (they are scheduled again once it is settled)
   notify("left", { frameChanged });
-  app.holdUntil = hold && app.liveOn ? performance.now() + SETTLE_MS : 0;
+  app.holdUntil = hold && app.liveOn ? performance.now() + holdFor(performance.now()) : 0;
   if (app.liveOn && app.frames > 0 && !app.liveRequest) {
     app.liveRequest = requestAnimationFrame(drawLiveFrame);
   }
   settleLater(app.version);
+}
+
+/** How long the settled drawing waits after an input at `now` [ms]. */
+function holdFor(now) {
+  const gap = now - app.lastInputAt;
+  app.lastInputAt = now;
+  return gap < RHYTHM_MS ? Math.min(Math.max(SETTLE_MS, 1.5 * gap), HOLD_MAX_MS) : SETTLE_MS;
 }
 
 /** The hand has stopped (a slider released, a number box left): settle now. */
@@ -119,9 +130,10 @@ function drawLiveFrame() {
   $("plots").dataset.frame = String(app.frames);
 }
 
-/** True while the plots show a live frame that has not settled yet. */
+/** True between a state change and its settle, while live frames are on (a request
+ *  view's answer that comes meanwhile is drawn live too). */
 function showingLive() {
-  return app.busy && app.liveOn && app.shownVersion === app.version;
+  return app.busy && app.liveOn && app.frames > 0;
 }
 
 function settleFrame(version) {
