@@ -5,7 +5,8 @@
 //   views.js        the registry of views the render path walks
 //   modelviews.js   the four model plots; rampview.js the ramp experiment
 //   viewrequests.js the views with requests of their own; simulation.js the simulated
-//                   points; lessons.js pin, sweep and tour; inputs.js the controls
+//                   points; lessons.js pin, sweep and tour; inputs.js the controls;
+//                   phone.js the plot in view on a phone
 //
 // For tests and scripts: #plots carries data-ready="true|false" and data-frame=<count>;
 // window.breakaway.ready() resolves once the plots show the current state (or its
@@ -17,6 +18,7 @@ import { fitReady, fitReport, initDataPanel } from "./datapanel.js";
 import { setState, wireControls } from "./inputs.js";
 import { wireLessons } from "./lessons.js";
 import "./modelviews.js";
+import { initPhone } from "./phone.js";
 import { wireRamp } from "./rampview.js";
 import { SETTLE_MS, refresh, showServerError } from "./render.js";
 import { wireSimulation } from "./simulation.js";
@@ -97,6 +99,7 @@ async function init() {
   setParams(response.parameters);
   buildControls(document);
   wireTabs();
+  initPhone();
   initDataPanel({ applyParams: applyFitted });
   app.defaults = response.defaults;
   app.presets = response.presets;
