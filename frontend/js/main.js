@@ -18,6 +18,7 @@ import { fitReady, fitReport, initDataPanel } from "./datapanel.js";
 import { setState, wireControls } from "./inputs.js";
 import { wireLessons } from "./lessons.js";
 import "./modelviews.js";
+import { PALETTE } from "./palette.js";
 import { initPhone } from "./phone.js";
 import { wireRamp } from "./rampview.js";
 import { SETTLE_MS, refresh, showServerError } from "./render.js";
