@@ -6,9 +6,10 @@
 // A graph shows the settled drawing except between a live frame and the next settle.
 
 import { drawFigure } from "./draw.js";
-import { clearLive, drawLive } from "./livedraw.js";
+import { clearLive, drawLive, isLive } from "./livedraw.js";
 
 const drawn = {}; // plot id -> {data, layoutKey} the graph was last drawn with by Plotly
+const drawnLive = {}; // plot id -> the figure its live canvas shows
 
 export const surfaceStats = { reacts: 0, live: 0 };
 
@@ -57,10 +58,16 @@ export function settle(id, figure, config, current = () => true) {
   });
 }
 
-/** Draw `figure` on plot `id`'s live canvas; false when the graph has no Plotly layout
- *  yet (its first drawing is Plotly's). */
+/** Draw `figure` on plot `id`'s live canvas (nothing when it shows it already: while
+ *  the mass moves, only the ramp changes); false when the graph has no Plotly layout yet
+ *  (its first drawing is Plotly's). */
 export function live(id, figure) {
-  const done = drawLive(graph(id), figure);
-  if (done) surfaceStats.live += 1;
+  const gd = graph(id);
+  if (isLive(gd) && drawnLive[id]?.gd === gd && sameFigure(drawnLive[id].figure, figure)) return true;
+  const done = drawLive(gd, figure);
+  if (done) {
+    drawnLive[id] = { gd, figure };
+    surfaceStats.live += 1;
+  }
   return done;
 }

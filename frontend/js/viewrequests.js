@@ -4,8 +4,9 @@
 //            request aborted (a slider that moves the model's curves: the view follows
 //            when the hand stops, as the simulations do);
 //   live     at once, when a change leaves the model's curves as they are (the mass m):
-//            then this view is what the hand explores. One request in flight; a hand
-//            that moved on meanwhile is asked for when it lands, so a drag never starves.
+//            then this view is what the hand explores. Two requests in flight at most,
+//            none aborted (a drag never starves); a hand that moved on meanwhile is asked
+//            for when one lands; an answer older than the one shown is dropped.
 // A key press asks ahead for the answers one press away on either side. An answer for
 // the state shown is not asked for again. Each answer drawn counts in #plots
 // data-<id>-frame.
@@ -16,12 +17,23 @@ import { exploreBody } from "./state.js";
 import { $, app, flush } from "./store.js";
 import { requestViews, viewOf } from "./views.js";
 
-const AHEAD_KEPT = 8;
+const KEPT = 8;
+/** Live requests of one view on their way at a time: two, so that an input waits for
+ *  one round trip, not for the end of the one before it too. */
+const LIVE_FLYING = 2;
 const runs = {}; // view id -> {timer, controller, key (asked for), again, frames}
 const ahead = new Map(); // "<view id> <key>" -> the answer asked for ahead of a key press
+const answers = new Map(); // "<view id> <key>" -> an answer drawn lately (a turn goes back to it)
+
+function keep(map, name, value) {
+  map.delete(name);
+  map.set(name, value);
+  if (map.size > KEPT) map.delete(map.keys().next().value);
+}
 
 function run(id) {
-  runs[id] ??= { timer: null, controller: null, key: null, again: false, frames: 0 };
+  // flying: request number -> {controller, key}; shown: the number of the answer shown
+  runs[id] ??= { timer: null, flying: new Map(), count: 0, shown: 0, again: false, frames: 0 };
   return runs[id];
 }
 
@@ -38,7 +50,16 @@ export function viewResult(id, state) {
 
 /** True while a view's request is due or on its way. */
 export function viewsBusy() {
-  return Object.values(runs).some((entry) => entry.timer || entry.controller);
+  return Object.values(runs).some((entry) => entry.timer || entry.flying.size);
+}
+
+function flying(entry, key) {
+  return [...entry.flying.values()].some((request) => request.key === key);
+}
+
+function abortFlying(entry) {
+  for (const request of entry.flying.values()) request.controller.abort();
+  entry.flying.clear();
 }
 
 function cancel(view) {
@@ -46,57 +67,62 @@ function cancel(view) {
   clearTimeout(entry.timer);
   entry.timer = null;
   entry.again = false;
-  if (entry.controller) entry.controller.abort();
-  entry.controller = null;
+  abortFlying(entry);
   if (!viewsBusy()) flush("views");
 }
 
 function answerFor(view, key, body, signal) {
-  const asked = ahead.get(`${view.id} ${key}`);
+  const name = `${view.id} ${key}`;
+  if (answers.has(name)) return Promise.resolve(answers.get(name));
+  const asked = ahead.get(name);
   if (!asked) return postJSON(view.request.url, body, signal);
   ahead.delete(`${view.id} ${key}`);
   return asked.catch(() => postJSON(view.request.url, body, signal));
 }
 
-async function ask(view, state) {
+/** Ask for `state`'s answer and draw it, unless a later request's answer is shown by
+ *  then; `live` requests run beside one another (a drag), the others replace them. */
+async function ask(view, state, { live = false } = {}) {
   const entry = run(view.id);
-  if (entry.controller) entry.controller.abort();
+  if (!live) abortFlying(entry);
   const controller = new AbortController();
   const key = keyOf(view, state);
-  Object.assign(entry, { controller, key, again: false });
+  entry.count += 1;
+  const number = entry.count;
+  entry.flying.set(number, { controller, key });
+  entry.again = false;
   try {
     const value = await answerFor(view, key, view.request.body(state), controller.signal);
-    if (controller !== entry.controller) return;
-    app.results[view.id] = { key, value };
-    view.onResult?.(value);
-    await drawView(view.id);
-    entry.frames += 1;
-    $("plots").dataset[`${view.id}Frame`] = String(entry.frames);
+    if (entry.flying.has(number) && number > entry.shown) {
+      entry.shown = number;
+      app.results[view.id] = { key, value };
+      keep(answers, `${view.id} ${key}`, value);
+      view.onResult?.(value);
+      await drawView(view.id);
+      entry.frames += 1;
+      $("plots").dataset[`${view.id}Frame`] = String(entry.frames);
+    }
   } catch (error) {
-    if (error.name === "AbortError" || controller !== entry.controller) return;
-    view.onError?.(error);
+    if (error.name !== "AbortError" && entry.flying.has(number)) view.onError?.(error);
   }
-  if (controller === entry.controller) {
-    entry.controller = null;
-    entry.key = null;
+  if (entry.flying.delete(number)) {
     if (entry.again) askLive(view);
     if (!viewsBusy()) flush("views");
   }
 }
 
-/** Ask at once for the current state, unless its answer is here or on its way. */
+/** Ask at once for the current state, unless its answer is here or on its way: at most
+ *  LIVE_FLYING requests at a time, then the state the hand is on when one lands. */
 function askLive(view) {
   const entry = run(view.id);
   clearTimeout(entry.timer);
   entry.timer = null;
   const key = keyOf(view, app.state);
-  if (app.results[view.id]?.key === key) {
-    drawView(view.id);
-  } else if (entry.controller) {
-    entry.again = entry.key !== key;
-  } else {
-    ask(view, app.state);
-  }
+  entry.again = false;
+  if (app.results[view.id]?.key === key) drawView(view.id);
+  else if (flying(entry, key)) return;
+  else if (entry.flying.size < LIVE_FLYING) ask(view, app.state, { live: true });
+  else entry.again = true;
 }
 
 /** Once a state's frame is settled: its answer drawn, or asked for after the debounce. */
@@ -108,7 +134,11 @@ function schedule(view) {
     drawView(view.id);
     return;
   }
-  if (entry.controller && entry.key === key) return;
+  if (entry.flying.size) {
+    // live requests (the mass moved) land first, then the state shown is asked for
+    entry.again = !flying(entry, key);
+    return;
+  }
   clearTimeout(entry.timer);
   entry.timer = setTimeout(() => {
     entry.timer = null;
@@ -124,11 +154,10 @@ export function prefetchViews(states) {
       if (JSON.stringify(exploreBody(state)) !== app.frameKey) continue;
       const key = keyOf(view, state);
       const name = `${view.id} ${key}`;
-      if (app.results[view.id]?.key === key || ahead.has(name)) continue;
+      if (answers.has(name) || ahead.has(name)) continue;
       const asked = postJSON(view.request.url, view.request.body(state), undefined, "low");
       asked.catch(() => {}); // a failed one is asked for again when its key is pressed
-      ahead.set(name, asked);
-      if (ahead.size > AHEAD_KEPT) ahead.delete(ahead.keys().next().value);
+      keep(ahead, name, asked);
     }
   }
 }
