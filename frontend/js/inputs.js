@@ -66,6 +66,8 @@ function wireParameters() {
       refresh({ hold: true });
     };
     range.addEventListener("input", moved);
+    // a slider taken by the keyboard: what only a request can draw is asked for ahead
+    range.addEventListener("focus", () => prefetchViews(neighbours(spec, range)));
     range.addEventListener("keydown", (event) => {
       if (event.altKey || event.ctrlKey || event.metaKey) return;
       const target = keyTarget(event.key, range);

@@ -27,12 +27,14 @@ export const EXPLORER_CONFIG = {
   modeBarButtonsToRemove: [...PLOT_CONFIG.modeBarButtonsToRemove, "toImage"],
 };
 /** A hand that gives no input for this long has stopped [ms]: a held arrow key repeats
- *  every 33 ms, a drag's inputs come every 16 ms. A person pressing keys one by one in a
- *  rhythm (a gap under RHYTHM_MS) has stopped once 1.5 gaps pass without a press, up to
- *  HOLD_MAX_MS: a press landing on the settled drawing waits for one Plotly.react. */
+ *  every 33 ms, a drag's inputs come every 16 ms. A person pressing keys one by one (gaps
+ *  under RHYTHM_MS) has stopped once 1.5 times the longest of their last gaps passes
+ *  without a press, up to HOLD_MAX_MS: a press that lands on the settled drawing waits
+ *  for one Plotly.react (13–24 ms). */
 export const SETTLE_MS = 250;
 const RHYTHM_MS = 1000;
 const HOLD_MAX_MS = 750;
+const GAPS_KEPT = 3;
 
 const listeners = { left: [], drawn: [] };
 
@@ -91,7 +93,8 @@ export function refresh({ hold = false } = {}) {
 function holdFor(now) {
   const gap = now - app.lastInputAt;
   app.lastInputAt = now;
-  return gap < RHYTHM_MS ? Math.min(Math.max(SETTLE_MS, 1.5 * gap), HOLD_MAX_MS) : SETTLE_MS;
+  app.gaps = gap < RHYTHM_MS ? [...app.gaps, gap].slice(-GAPS_KEPT) : [];
+  return Math.min(Math.max(SETTLE_MS, 1.5 * Math.max(0, ...app.gaps)), HOLD_MAX_MS);
 }
 
 /** The hand has stopped (a slider released, a number box left): settle now. */

@@ -19,6 +19,7 @@ export const app = {
   liveRequest: null, // the animation frame that draws the next live frame
   holdUntil: 0, // the settled drawing waits until then (the hand is moving) [ms]
   lastInputAt: -Infinity, // the last input of a moving hand [ms]
+  gaps: [], // the last gaps between its inputs [ms]
   settleTimer: null,
   frames: 0, // states shown, live or settled
   shownVersion: -1, // the state version the plots show
