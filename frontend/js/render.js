@@ -36,7 +36,7 @@ const RHYTHM_MS = 1000;
 const HOLD_MAX_MS = 750;
 const GAPS_KEPT = 3;
 
-const listeners = { left: [], drawn: [] };
+const listeners = { left: [], drawn: [], before: [] };
 
 /** Call `fn({frameChanged})` whenever the state the page showed is left for another;
  *  `frameChanged` false when the model's curves stay (the mass m moved). */
@@ -47,6 +47,12 @@ export function onStateLeft(fn) {
 /** Call `fn()` once the frame of a new state is drawn and settled. */
 export function onFrameDrawn(fn) {
   listeners.drawn.push(fn);
+}
+
+/** Call `fn()` before a settled drawing, which waits for the promise it returns (the
+ *  answers of views on their way, so that Plotly draws them once, not twice). */
+export function beforeSettle(fn) {
+  listeners.before.push(fn);
 }
 
 function notify(kind, detail) {
@@ -151,6 +157,7 @@ function settleFrame(version) {
     : postJSON("/api/explore", body, controller.signal);
   asked
     .then(async (frame) => {
+      await Promise.all(listeners.before.map((fn) => fn()));
       if (version !== app.version) return;
       app.frame = frame;
       app.frameKey = key;
@@ -196,6 +203,17 @@ export function showPlot(id, plain) {
   const figure = styled(plain, pageStyle());
   if (showingLive() && live(id, figure)) return Promise.resolve();
   return settle(id, figure, EXPLORER_CONFIG);
+}
+
+/** Draw a view's figure on its live canvas at once, and the frame views in `ids` that
+ *  show its answer too, when live frames are on (the settled drawing may follow); true
+ *  when drawn. */
+export function drawLiveNow(id, plain, ids = []) {
+  if (!app.liveOn || app.frames === 0 || !app.frame) return false;
+  const done = live(id, styled(plain, pageStyle()));
+  const figs = pageFigures(app.busy ? liveFrame() : app.frame, app.state, ids);
+  for (const other of ids) live(other, styled(figs[other], pageStyle()));
+  return done;
 }
 
 /** Draw the current frame's views again (all, or those in `ids`): a simulation came,

@@ -12,9 +12,11 @@
 // data-<id>-frame.
 
 import { postJSON } from "./api.js";
-import { onFrameDrawn, onStateLeft, redraw, showPlot } from "./render.js";
+import {
+  beforeSettle, drawLiveNow, onFrameDrawn, onStateLeft, redraw, showPlot,
+} from "./render.js";
 import { exploreBody } from "./state.js";
-import { $, app, flush } from "./store.js";
+import { $, app, flush, whenIdle } from "./store.js";
 import { requestViews, viewOf } from "./views.js";
 
 const KEPT = 8;
@@ -98,9 +100,11 @@ async function ask(view, state, { live = false } = {}) {
       app.results[view.id] = { key, value };
       keep(answers, `${view.id} ${key}`, value);
       view.onResult?.(value);
-      await drawView(view.id);
+      // on its canvas at once, counted, then settled by Plotly when the page is
+      const settling = drawView(view.id, { now: true });
       entry.frames += 1;
       $("plots").dataset[`${view.id}Frame`] = String(entry.frames);
+      await settling;
     }
   } catch (error) {
     if (error.name !== "AbortError" && entry.flying.has(number)) view.onError?.(error);
@@ -162,14 +166,19 @@ export function prefetchViews(states) {
   }
 }
 
-/** Draw view `id` from its last answer, and the frame views that show it too. */
-export function drawView(id) {
+/** Draw view `id` from its last answer, and the frame views that show it too; `now`:
+ *  first at once on the live canvases, Plotly in a task of its own. */
+export function drawView(id, { now = false } = {}) {
   const view = viewOf(id);
   const result = app.results[id];
   if (!result || !app.frame) return Promise.resolve();
   view.onDraw?.(result.value, app.state);
   const figure = view.figure({ frame: app.frame, state: app.state, result: result.value });
-  return Promise.all([showPlot(id, figure), redraw(view.redraws ?? [])]);
+  const settled = () => Promise.all([showPlot(id, figure), redraw(view.redraws ?? [])]);
+  if (now && drawLiveNow(id, figure, view.redraws ?? [])) {
+    return new Promise((resolve) => { setTimeout(() => settled().then(resolve, resolve)); });
+  }
+  return settled();
 }
 
 // a request for a state whose curves were left is dropped (the new state's is asked for
@@ -180,3 +189,5 @@ onStateLeft(({ frameChanged }) => {
   }
 });
 onFrameDrawn(() => requestViews().forEach(schedule));
+// live answers on their way (the mass moved) land before Plotly draws the settled plots
+beforeSettle(() => whenIdle("views", viewsBusy));
