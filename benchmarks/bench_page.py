@@ -1,24 +1,13 @@
-"""The explorer as a person meets it, measured in headless Chromium.
+"""The explorer's first load, measured in headless Chromium.
 
-    .venv/bin/python benchmarks/bench_page.py [--presses N] [--loads N] [--only keys,load]
+    .venv/bin/python benchmarks/bench_page.py [--loads N]
 
-1. keys: a key press on each slider (ArrowRight/ArrowLeft on the focused range input, as a
-   keyboard user or a person nudging a slider does, 150 ms apart) to the plots updated:
-   from the ``keydown`` event to ``#plots`` signalling the new frame drawn (its
-   ``data-frame`` changes with ``data-ready="true"``), both read with ``performance.now()``
-   in the page. The mass m moves only the simulations, so for m the end is the ramp
-   experiment redrawn (``data-ramp-frame``). p50/p95 per slider, the default page (ramp
-   and simulation on), 1280×800. Against it, in the same run: the same presses with the
-   next arrow step's frame asked for ahead but its plots not drawn ahead into the hidden
-   graphs (``window.breakaway.drawAhead(false)``: every press waits for ``Plotly.react``),
-   with nothing ahead (``window.breakaway.prefetch(false)``: every press waits for its
-   request too), and, without drawing ahead, with every plot that changed drawn from
-   scratch (``Plotly.purge`` + ``newPlot``) instead of ``Plotly.react``.
-2. load: first load on an emulated 20 Mbit/s link with 40 ms latency (Chrome DevTools
-   network emulation, cache disabled), navigation start to four drawn plots: the page as
-   served (Plotly's partial bundle, gzip) against the full Plotly bundle (4.8 MB) served
-   the same way, and against the full bundle uncompressed (how it was served before). The
-   full bundle comes from the ``plotly`` Python package (``pip install -e .[bench]``).
+First load on an emulated 20 Mbit/s link with 40 ms latency (Chrome DevTools network
+emulation, cache disabled), navigation start to four drawn plots: the page as served
+(Plotly's partial bundle, gzip) against the full Plotly bundle (4.8 MB) served the same
+way, and against the full bundle uncompressed (how it was served before). The full bundle
+comes from the ``plotly`` Python package (``pip install -e .[bench]``). Key presses and
+drags: benchmarks/ui_latency.py (which uses this file's Server and launch).
 
 Nothing is asserted; tests check behaviour, this file reports speed.
 """
@@ -36,43 +25,13 @@ import time
 import urllib.request
 from pathlib import Path
 
-from bench_explorer import free_port, load_average, machine, pct
+from bench_explorer import free_port, machine
 
 ROOT = Path(__file__).resolve().parents[1]
 FRONTEND = ROOT / "frontend"
 BROWSER_ARGS = ["--no-sandbox", "--disable-gpu", "--disable-background-networking",
                 "--disable-component-update", "--disable-sync"]
-TARGETS = {"p50_ms": 40, "p95_ms": 80, "m_p50_ms": 150, "load_s": 3.0}
-SLIDERS = ["Fc", "Fs", "V", "delta", "sigma", "k", "s", "z_ba", "m"]
-
-#: Installed once per page: the time of every keydown, and of every new frame.
-PROBE = """
-() => {
-  const probe = window.__probe = {key: 0, frame: 0, ramp: 0};
-  document.addEventListener('keydown', () => { probe.key = performance.now(); }, true);
-  const plots = document.getElementById('plots');
-  new MutationObserver((records) => {
-    for (const record of records) {
-      if (record.attributeName === 'data-frame' && plots.dataset.ready === 'true') {
-        probe.frame = performance.now();
-      }
-      if (record.attributeName === 'data-ramp-frame') probe.ramp = performance.now();
-    }
-  }).observe(plots, {attributes: true, attributeFilter: ['data-frame', 'data-ramp-frame']});
-}
-"""
-
-#: The alternative: each redraw from scratch (``Plotly.purge`` + ``newPlot``) instead of
-#: ``Plotly.react``'s update of what changed.
-NEW_PLOT = """
-() => {
-  Plotly.react = (gd, data, layout, config) => {
-    Plotly.purge(gd);
-    return Plotly.newPlot(gd, data, layout, config);
-  };
-}
-"""
-
+TARGETS = {"load_s": 3.0}
 
 class Server:
     """``breakaway serve`` on a free port, optionally with another frontend folder."""
@@ -117,80 +76,6 @@ def launch(playwright):
                                       args=BROWSER_ARGS)
 
 
-def press_latencies(page, name: str, presses: int) -> list[float]:
-    """Key press → plots updated [ms], ``presses`` times on one slider."""
-    marker = "ramp" if name == "m" else "frame"
-    page.focus(f"#{name}-range")
-    # five steps towards the farther end of the slider, five back, and so on
-    room = page.evaluate(f"""() => {{ const r = document.getElementById('{name}-range');
-        return [r.value - r.min, r.max - r.value]; }}""")
-    keys = ("ArrowRight", "ArrowLeft") if room[1] >= room[0] else ("ArrowLeft", "ArrowRight")
-    out = []
-    for i in range(presses):
-        key = keys[(i // 5) % 2]
-        page.keyboard.press(key)
-        deadline = time.monotonic() + 10
-        while True:
-            done = page.evaluate(
-                f"() => __probe.{marker} > __probe.key ? __probe.{marker} - __probe.key : null")
-            if done is not None:
-                break
-            if time.monotonic() > deadline:
-                raise RuntimeError(f"no redraw after a key press on {name}")
-            time.sleep(0.005)
-        out.append(done)
-        # let the debounced ramp and simulation of this press run, as between a
-        # person's key presses
-        time.sleep(0.15)
-        page.evaluate("window.breakaway.rampReady()")
-    return out
-
-
-def bench_keys(presses: int) -> None:
-    from playwright.sync_api import sync_playwright
-
-    print(f"\n1. Key press on a slider → plots updated, in the page ({presses} presses per "
-          f"slider, 150 ms apart; Chromium headless, 1280×800; load average {load_average()})")
-    print(f"   targets: p50 ≤ {TARGETS['p50_ms']} ms, p95 ≤ {TARGETS['p95_ms']} ms; "
-          f"m (the simulations) p50 ≤ {TARGETS['m_p50_ms']} ms")
-    with Server() as server, sync_playwright() as playwright:
-        browser = launch(playwright)
-        results = {}
-        hits = surfaces = None
-        variants = (("the page", []),
-                    ("not drawn ahead", ["window.breakaway.drawAhead(false)"]),
-                    ("nothing ahead", ["window.breakaway.prefetch(false)"]),
-                    ("newPlot", ["window.breakaway.drawAhead(false)", NEW_PLOT]))
-        for label, setup in variants:
-            page = browser.new_page(viewport={"width": 1280, "height": 800})
-            page.goto(f"{server.url}/")
-            page.evaluate("window.breakaway.rampReady()")
-            page.evaluate(PROBE)
-            for script in setup:
-                page.evaluate(script)
-            results[label] = {name: press_latencies(page, name, presses) for name in SLIDERS}
-            if label == "the page":
-                hits = page.evaluate("window.breakaway.prefetchHits()")
-                surfaces = page.evaluate("window.breakaway.surfaces()")
-            page.close()
-        browser.close()
-    labels = list(results)
-    print(f"   {'slider':8s}" + "".join(f" {label + ': p50':>22s} {'p95':>8s}" for label in labels))
-    for name in SLIDERS:
-        print(f"   {name:8s}" + "".join(
-            f" {pct(results[label][name], .5):19.1f} ms {pct(results[label][name], .95):5.1f} ms"
-            for label in labels))
-    for label in labels:
-        every = [v for name in SLIDERS if name != "m" for v in results[label][name]]
-        print(f"   all sliders but m, {label}: p50 {pct(every, .5):.1f} ms, "
-              f"p95 {pct(every, .95):.1f} ms")
-    print(f"   presses that found their frame asked for ahead: {hits} of "
-          f"{presses * (len(SLIDERS) - 1)} (m asks for no frame)")
-    print(f"   the page's plots: {surfaces['swaps']} shown from the graph drawn ahead, "
-          f"{surfaces['reacts']} drawn by Plotly.react when shown (the ramp's simulated "
-          f"path, turns of direction), {surfaces['drawnAhead']} drawn ahead")
-
-
 def first_load(browser, url: str, identity: bool) -> float:
     """Navigation start to four drawn plots [s] on an emulated 20 Mbit/s, 40 ms link."""
     context = browser.new_context(viewport={"width": 1280, "height": 800})
@@ -214,7 +99,7 @@ def first_load(browser, url: str, identity: bool) -> float:
 def bench_load(loads: int) -> None:
     from playwright.sync_api import sync_playwright
 
-    print(f"\n2. First load, 20 Mbit/s and 40 ms emulated, cache off: navigation start to four "
+    print(f"\nFirst load, 20 Mbit/s and 40 ms emulated, cache off: navigation start to four "
           f"drawn plots ({loads} loads each; target ≤ {TARGETS['load_s']} s)")
     try:
         import plotly
@@ -244,16 +129,10 @@ def bench_load(loads: int) -> None:
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--presses", type=int, default=40)
     parser.add_argument("--loads", type=int, default=3)
-    parser.add_argument("--only", default="keys,load")
     args = parser.parse_args(argv)
     print(f"Machine: {machine()}")
-    sections = args.only.split(",")
-    if "keys" in sections:
-        bench_keys(args.presses)
-    if "load" in sections:
-        bench_load(args.loads)
+    bench_load(args.loads)
     return 0
 
 

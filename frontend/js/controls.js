@@ -198,3 +198,22 @@ export function showErrors(errors) {
     box.closest(".control").classList.toggle("invalid", Boolean(message));
   }
 }
+
+/** `state` with `spec`'s slider at `position` (and Fs/Fc coupled); true when the other
+ *  of Fs and Fc moved. */
+export function moveSlider(state, spec, position) {
+  state[spec.name] = sliderToValue(spec, position);
+  return couple(state, spec.name);
+}
+
+/** Keep Fs ≥ Fc as the person edits one of them in `state`: the other follows
+ *  (MODEL.md §1). True when it moved. */
+export function couple(state, name) {
+  const Fc = parseNumber(state.Fc);
+  const Fs = parseNumber(state.Fs);
+  if (!(Fc > 0 && Fs > 0) || Fs >= Fc) return false;
+  if (name === "Fc") state.Fs = Fc;
+  else if (name === "Fs") state.Fc = Fs;
+  else return false;
+  return true;
+}

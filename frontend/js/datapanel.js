@@ -6,22 +6,25 @@
 // requests (submit, poll, cancel) are fitjob.js's; this module keeps the panel's state
 // and draws it. #data-panel carries
 // data-state="idle|running|done|error|cancelled"; window.breakaway.fitReady() resolves
-// once no fit is running.
+// once no fit is running. What a fit gives the explorer is fitparams.js's; the quiz of
+// the mystery samples is quiz.js's.
 
 import { ApiError, getJSON } from "./api.js";
 import {
   cancelJob, isActive, pollJob, residualsCsv, sampleFile, submitFit,
 } from "./fitjob.js";
-import { PARAMS, paramSpec, roundSignificant } from "./controls.js";
+import { paramSpec } from "./controls.js";
 import { drawFigure, onSchemeChange } from "./draw.js";
 import { download } from "./export.js";
+import { dataErrorMessage, explorerParams, measuredOverlay } from "./fitparams.js";
 import { fitFigures, formatNumber, modelCaption } from "./fitplots.js";
 import {
   element, plotCard, renderErrorTable, renderParamTable, renderSteps, renderSummary,
 } from "./fitview.js";
+import {
+  endQuiz, quizPending, startQuiz, wireQuiz,
+} from "./quiz.js";
 
-/** Explorer parameters that "Use these parameters" sets (rounded to this many digits). */
-const DIGITS = 6;
 const panel = {
   state: "idle",
   generation: 0, // each started fit; answers for an older one are dropped
@@ -31,85 +34,11 @@ const panel = {
   result: null, // the finished job {id, source, report, series}
   samples: [],
   applyParams: null,
-  quiz: null, // {answer: [effects] | "none" | "outside"} while a puzzle is unrevealed
   figures: null, // the shown fit's figures, redrawn when the page's style changes
 };
 
-/** Effects of the library per data kind (MODEL.md §7), for the quiz's choices. */
-const LIBRARY = {
-  timeseries: ["viscous", "asymmetry", "offset", "drift", "inertia", "ripple", "lag", "backlash"],
-  steady: ["viscous", "asymmetry", "offset"],
-  breakaway: ["viscous", "asymmetry", "inertia", "dwell", "detection"],
-};
 const waiting = [];
 const $ = (id) => document.getElementById(id);
-
-// ---------------------------------------------------------------------------------
-// pure helpers
-// ---------------------------------------------------------------------------------
-
-/**
- * The explorer values a report gives, and notes for the person: Fc, Fs, V, δ from the
- * final model (for asymmetric data these are the positive-direction levels), s when the
- * data determine it, σ when the viscous effect was found (else 0). Values are rounded to
- * DIGITS significant digits; a value beyond its slider's range is kept (the number box
- * holds any value; the slider rests at its end) and named in the notes.
- */
-export function explorerParams(report, specs = PARAMS) {
-  const fitted = report.final.params;
-  const values = {};
-  for (const name of ["Fc", "Fs", "V", "delta"]) {
-    if (Number.isFinite(fitted[name])) values[name] = roundSignificant(fitted[name], DIGITS);
-  }
-  const notes = [];
-  if (report.kind === "timeseries" && Number.isFinite(fitted.s)) {
-    values.s = roundSignificant(fitted.s, DIGITS);
-  } else if (report.kind === "breakaway") {
-    notes.push("s is kept: a break-away fit takes it from the file (it assumes F̂ = avg, z* = 0.95)");
-  } else {
-    notes.push("s is kept: steady data do not determine it");
-  }
-  values.sigma = report.effects.includes("viscous") && Number.isFinite(fitted.sigma)
-    ? roundSignificant(fitted.sigma, DIGITS) : 0;
-  if (values.Fs < values.Fc) values.Fs = values.Fc; // rounding never does this; be safe
-  // sliders reach the data's scale (kN for a damper): a range is widened by decades
-  const ranges = {};
-  const widened = [];
-  for (const [name, value] of Object.entries(values)) {
-    const spec = specs.find((s) => s.name === name);
-    if (!spec || spec.scale === "linear" || !(value > 0)) continue;
-    const min = value < spec.min ? 10 ** Math.floor(Math.log10(value / 10)) : spec.min;
-    const max = value > spec.max ? 10 ** Math.ceil(Math.log10(value * 10)) : spec.max;
-    if (min !== spec.min || max !== spec.max) {
-      ranges[name] = { min, max };
-      const low = spec.scale === "log0" ? 0 : min;
-      widened.push(`${spec.symbol} ${low} … ${max}`);
-    }
-  }
-  if (widened.length) notes.push(`slider ranges widened to the data's scale: ${widened.join(", ")}`);
-  const others = Object.keys(fitted).filter((name) => !specs.some((spec) => spec.name === name));
-  if (others.length) notes.push(`the explorer has no control for ${others.join(", ")}`);
-  return { values, notes, ranges };
-}
-
-/** The measured points to overlay in the explorer: on the Stribeck plot (steady data),
- *  the break-away plot (break-away data) or the hysteresis loop (a time series). */
-export function measuredOverlay(job) {
-  const columns = job.series.columns;
-  const plot = { steady: "stribeck", breakaway: "breakaway", timeseries: "hysteresis" }[job.report.kind];
-  const axis = { stribeck: "v", breakaway: "k", hysteresis: "x" }[plot];
-  return { plot, x: columns[axis], y: columns.measured };
-}
-
-/** The message of a bad file: the engine's sentence, with line and column if it lacks them. */
-export function dataErrorMessage(error) {
-  const item = error instanceof ApiError && error.detail.length ? error.detail[0] : null;
-  let message = item ? item.msg : error.message;
-  if (item && item.line != null && !message.includes(`line ${item.line}`)) {
-    message += ` (line ${item.line}${item.column ? `, column '${item.column}'` : ""})`;
-  }
-  return message;
-}
 
 // ---------------------------------------------------------------------------------
 // state and status
@@ -225,7 +154,7 @@ async function finish(job, generation) {
     panel.result = job;
     const sample = panel.source?.kind === "sample"
       ? panel.samples.find((s) => s.name === panel.source.name) : null;
-    if (sample?.quiz) startQuiz(job); else $("quiz").hidden = true;
+    if (sample?.quiz) startQuiz(job.report); else endQuiz();
     await showResults(job);
     if (generation !== panel.generation) return;
     setPanelState("done");
@@ -261,9 +190,7 @@ function cancelFit() {
 
 function clearResults() {
   panel.result = null;
-  panel.quiz = null;
-  $("quiz").hidden = true;
-  $("fit-results").classList.remove("quiz-hidden");
+  endQuiz();
   const results = $("fit-results");
   results.hidden = true;
   for (const div of results.querySelectorAll(".fit-plot")) {
@@ -274,52 +201,6 @@ function clearResults() {
   $("use-note").textContent = "";
 }
 
-// ---------------------------------------------------------------------------------
-// the quiz: a mystery sample shows the data and the base model first; the diagnosis
-// only after a guess
-// ---------------------------------------------------------------------------------
-
-/** The right answer of a finished report: its effects, "none" or "outside". */
-export function quizAnswer(report) {
-  if (report.effects.length) return report.effects;
-  return report.unexplained ? "outside" : "none";
-}
-
-/** Whether `guess` (an effect name, "none" or "outside") is right for `report`. */
-export function quizRight(guess, report) {
-  const answer = quizAnswer(report);
-  return Array.isArray(answer) ? answer.includes(guess) : guess === answer;
-}
-
-function startQuiz(job) {
-  panel.quiz = { report: job.report };
-  const select = $("quiz-guess");
-  select.replaceChildren(element("option", { value: "", text: "(choose)" }),
-    ...LIBRARY[job.report.kind].map((e) => element("option", { value: e, text: e })),
-    element("option", { value: "none", text: "nothing: the base model explains it" }),
-    element("option", { value: "outside", text: "something the library does not have" }));
-  $("quiz-reveal").disabled = true;
-  $("quiz-result").textContent = "";
-  $("quiz").hidden = false;
-  $("fit-results").classList.add("quiz-hidden");
-}
-
-async function revealQuiz() {
-  const guess = $("quiz-guess").value;
-  if (!panel.quiz || !guess || !panel.result) return;
-  const report = panel.quiz.report;
-  const answer = quizAnswer(report);
-  const truth = Array.isArray(answer) ? `the data hold ${answer.join(" and ")}`
-    : answer === "none" ? "nothing is missing: the base model explains the data"
-      : "the residual keeps structure that no effect of the library explains";
-  $("quiz-result").textContent = quizRight(guess, report)
-    ? `Right: ${truth}.` : `Not this time: ${truth}.`;
-  $("quiz-result").dataset.right = String(quizRight(guess, report));
-  panel.quiz = null;
-  $("fit-results").classList.remove("quiz-hidden");
-  await showResults(panel.result);
-}
-
 async function showResults(job) {
   const report = job.report;
   renderSummary(job);
@@ -328,7 +209,7 @@ async function showResults(job) {
   renderSteps(report);
   const figures = fitFigures(job);
   $("fit-model-caption").textContent = modelCaption(report.kind);
-  if (panel.quiz) {
+  if (quizPending()) {
     // before the reveal: the data, the base model and its residual only
     figures.model.data = figures.model.data.filter((t) => t.name !== "final model");
     figures.residual.data = figures.residual.data.filter((t) => !t.name.startsWith("after"));
@@ -467,10 +348,7 @@ export function initDataPanel({ applyParams }) {
   $("use-params").addEventListener("click", useParameters);
   $("download-report").addEventListener("click", downloadReport);
   $("download-residuals").addEventListener("click", downloadResiduals);
-  $("quiz-guess").addEventListener("change", () => {
-    $("quiz-reveal").disabled = !$("quiz-guess").value;
-  });
-  $("quiz-reveal").addEventListener("click", revealQuiz);
+  wireQuiz(() => panel.result && showResults(panel.result));
   $("present").addEventListener("change", drawFitFigures);
   onSchemeChange(drawFitFigures);
   wireDropZone();

@@ -1,6 +1,6 @@
 // Export what a plot shows: its traces as CSV (one row per plotted point), or a PNG.
 
-import { AXES } from "./plots.js";
+import { viewOf } from "./views.js";
 
 function csvField(text) {
   const s = String(text);
@@ -35,7 +35,7 @@ export function download(filename, blob) {
 
 export function exportCsv(plot) {
   const graph = document.getElementById(`plot-${plot}`);
-  const csv = tracesToCsv(graph.data ?? [], AXES[plot]);
+  const csv = tracesToCsv(graph.data ?? [], viewOf(plot).axes);
   download(`breakaway-${plot}.csv`, new Blob([csv], { type: "text/csv" }));
 }
 

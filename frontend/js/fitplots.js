@@ -2,6 +2,8 @@
 // figures {data, layout} for the data panel, and the number formats of its tables.
 // Nothing here touches the DOM; datapanel.js hands the figures to Plotly.react.
 
+import { PALETTE } from "./palette.js";
+
 /** Axis title of each column a series can hold. */
 export const AXIS_TITLES = {
   t: "t [s]",
@@ -35,13 +37,7 @@ export const PARAM_LABELS = {
   tau_d: "τ_d [s]",
 };
 
-const COLORS = {
-  measured: "#8a9099",
-  base: "#d62728",
-  final: "#1f4e99",
-  before: "#c9ccd1",
-  after: "#1f4e99",
-};
+const COLORS = { ...PALETTE.fitModel, ...PALETTE.fitResidual };
 
 /**
  * A number to `digits` significant digits, trailing zeros kept (15.00, 0.04427, 2961);

@@ -1,24 +1,12 @@
 // Pure functions from one /api/explore frame (and the simulation results) to fresh
-// Plotly figures {data, layout}. Nothing here touches the DOM; main.js hands the
-// figures to Plotly.react.
+// Plotly figures {data, layout}. Nothing here touches the DOM; the render path hands
+// the figures to the plots. Colours: palette.js.
+
+import { DARK_INK, PALETTE } from "./palette.js";
 
 export const PLOT_IDS = ["stribeck", "hysteresis", "phase", "breakaway"];
 
-// Okabe–Ito's colour-blind-safe palette; the four F̂ curves also differ by dash, so no
-// pair in a plot tells apart by hue alone.
-const COLORS = {
-  Fc: "#0072b2",
-  Fs: "#d55e00",
-  avg: "#009e73",
-  self: "#cc79a7",
-  family: "#b8bcc4",
-  current: "#e6550d",
-  curve: "#0072b2",
-  sim: "#111111",
-  lugre: "#8c564b",
-  forward: "#0072b2",
-  backward: "#e69f00",
-};
+const COLORS = PALETTE.breakaway;
 
 const F_HAT_DASH = { Fc: "solid", Fs: "dash", avg: "solid", self: "dot" };
 
@@ -51,7 +39,7 @@ export function stribeckFigure(frame) {
   const data = [{
     type: "scatter", mode: "lines", name: "Fss(v)",
     x: frame.stribeck.v, y: frame.stribeck.F,
-    line: { color: COLORS.curve, width: 2 },
+    line: { color: PALETTE.stribeck.curve, width: 2 },
     hovertemplate: "v = %{x:.3g} m/s<br>Fss = %{y:.4g} N<extra></extra>",
   }];
   return { data, layout: baseLayout("stribeck", { showlegend: false }) };
@@ -88,15 +76,15 @@ export function hysteresisFigure(frame, state = null) {
   }
   const data = [
     { type: "scatter", mode: "lines", name: "moving +x", x: forward.x, y: forward.y,
-      connectgaps: false, line: { color: COLORS.forward, width: 1.8 },
+      connectgaps: false, line: { color: PALETTE.hysteresis.forward, width: 1.8 },
       hovertemplate: "moving +x<br>x = %{x:.3g} m<br>F = %{y:.3g} N<extra></extra>" },
     { type: "scatter", mode: "lines", name: "moving −x", x: backward.x, y: backward.y,
-      connectgaps: false, line: { color: COLORS.backward, width: 1.8 },
+      connectgaps: false, line: { color: PALETTE.hysteresis.backward, width: 1.8 },
       hovertemplate: "moving −x<br>x = %{x:.3g} m<br>F = %{y:.3g} N<extra></extra>" },
     { type: "scatter", mode: "markers", name: "direction of travel", x: arrows.x, y: arrows.y,
       hoverinfo: "skip", showlegend: false,
       marker: { symbol: arrows.symbol, size: 8, color: arrows.symbol.map(
-        (s) => (s === "triangle-right" ? COLORS.forward : COLORS.backward)) } },
+        (s) => (s === "triangle-right" ? PALETTE.hysteresis.forward : PALETTE.hysteresis.backward)) } },
   ];
   const layout = baseLayout("hysteresis", {
     legend: { x: 0, xanchor: "left", y: 1, bgcolor: "rgba(255,255,255,0.75)" },
@@ -133,13 +121,13 @@ export function phaseFigure(frame, state) {
     {
       type: "scatter", mode: "lines", name: label,
       x: xs, y: ys, customdata: ks, connectgaps: false,
-      line: { color: COLORS.family, width: 1 },
+      line: { color: PALETTE.phase.family, width: 1 },
       hovertemplate: "k = %{customdata:.4g} N/s<br>z = %{x:.3f}<br>ẋ = %{y:.3g} m/s<extra></extra>",
     },
     {
       type: "scatter", mode: "lines", name: `current k = ${fmt(current.k)}`,
       x: z, y: current.v,
-      line: { color: COLORS.current, width: 3 },
+      line: { color: PALETTE.phase.current, width: 3 },
       hovertemplate: `k = ${fmt(current.k)} N/s<br>z = %{x:.3f}<br>ẋ = %{y:.4g} m/s<extra></extra>`,
     },
   ];
@@ -149,7 +137,7 @@ export function phaseFigure(frame, state) {
   data.push({
     type: "scatter", mode: "lines", name: `z* = ${fmt(zStar)}`,
     x: [zStar, zStar], y: [lo, hi], hoverinfo: "skip",
-    line: { color: "#555", width: 1, dash: "dot" },
+    line: { color: PALETTE.phase.zStar, width: 1, dash: "dot" },
   });
   const layout = baseLayout("phase", {
     yaxis: { title: { text: `${AXES.phase.y} (log)`, standoff: 4 }, type: "log",
@@ -214,13 +202,13 @@ export function breakawayFigure(frame, state, sim = null, lugre = null) {
     data.push({
       type: "scatter", mode: "markers", name: "ramp sim.: u(t_ba)",
       x: sim.k, y: sim.u_ba, opacity,
-      marker: { color: COLORS.sim, size: 7, symbol: "circle" },
+      marker: { color: COLORS.simulation, size: 7, symbol: "circle" },
       hovertemplate: "ramp simulation<br>k = %{x:.3g} N/s<br>u(t_ba) = %{y:.4g} N<extra></extra>",
     });
     data.push({
       type: "scatter", mode: "markers", name: "ramp sim.: F(t_ba)",
       x: sim.k, y: sim.F_ba, opacity,
-      marker: { color: COLORS.sim, size: 7, symbol: "circle-open" },
+      marker: { color: COLORS.simulation, size: 7, symbol: "circle-open" },
       hovertemplate: "ramp simulation<br>k = %{x:.3g} N/s<br>F(t_ba) = %{y:.4g} N<extra></extra>",
     });
   }
@@ -298,11 +286,6 @@ export function styled(figure, { present = false, dark = false } = {}) {
   if (dark) data = data.map(onDark);
   return { data, layout };
 }
-
-/** Black and dark grey ink (the simulation, reference lines) turned light on a dark
- *  background, where they would vanish. */
-const DARK_INK = { "#111111": "#e4e7eb", "#111": "#e4e7eb", "#000": "#e4e7eb",
-  "#555555": "#a7afba", "#555": "#a7afba" };
 
 function onDark(trace) {
   const out = { ...trace };

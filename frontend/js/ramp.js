@@ -2,7 +2,9 @@
 // ramp figure, the simulated path over the phase family, and the sentence that explains
 // the break-away numbers. Nothing here touches the DOM.
 
-const COLORS = { u: "#1f4e99", F: "#e6550d", v: "#555555", ba: "#111111", e13: "#2ca02c" };
+import { PALETTE } from "./palette.js";
+
+const COLORS = PALETTE.ramp;
 
 function fmt(value, digits = 3) {
   if (value == null || !Number.isFinite(value)) return "–";
@@ -33,7 +35,7 @@ export function rampFigure(ramp, state, cursor = null) {
     data.push({
       type: "scatter", mode: "markers+text", name: `break-away: t = ${fmt(ramp.t_ba)} s`,
       x: [ramp.t_ba], y: [ramp.u_ba], text: ["break-away"], textposition: "top left",
-      marker: { color: COLORS.ba, size: 10, symbol: "x" },
+      marker: { color: COLORS.breakAway, size: 10, symbol: "x" },
       hovertemplate: "t_ba = %{x:.4g} s<br>u_ba = %{y:.4g} N<extra></extra>",
     });
   }
@@ -42,7 +44,7 @@ export function rampFigure(ramp, state, cursor = null) {
     data.push({
       type: "scatter", mode: "markers", name: "time cursor", showlegend: false,
       x: [ramp.t[i], ramp.t[i]], y: [ramp.u[i], ramp.F[i]], hoverinfo: "skip",
-      marker: { color: "#000", size: 9, symbol: "circle-open", line: { width: 2 } },
+      marker: { color: COLORS.breakAway, size: 9, symbol: "circle-open", line: { width: 2 } },
     });
   }
   const layout = {
@@ -78,7 +80,7 @@ export function simulationPhaseTrace(ramp, cursor = null) {
   }
   return {
     type: "scatter", mode: "lines", name: "simulation", x: z, y: v, connectgaps: false,
-    line: { color: "#111", width: 2 },
+    line: { color: PALETTE.phase.simulation, width: 2 },
     hovertemplate: "simulation<br>z = %{x:.3f}<br>ẋ = %{y:.3g} m/s<extra></extra>",
   };
 }

@@ -1,5 +1,7 @@
 // Teaching tools as pure functions: pinned reference curves, parameter sweeps and the
-// guided tour through the note's figures. main.js owns the state and the requests.
+// guided tour through the note's figures. lessons.js owns the state and the requests.
+
+import { SWEEP } from "./palette.js";
 
 /** Faded copies of a figure's traces, to keep as a reference while the sliders move. */
 export function pinnedTraces(figure) {
@@ -22,72 +24,110 @@ export function withTraces(figure, traces) {
   return traces.length ? { ...figure, data: [...figure.data, ...traces] } : figure;
 }
 
-const SWEEP_COLORS = ["#08306b", "#2171b5", "#6baed6", "#fd8d3c", "#d94801", "#7f2704", "#3f007d"];
 
 /**
- * Evenly spaced values of `name` around the current state: a factor 4 around the value
- * for the log-scale parameters (halved to doubled), ±1 for δ, 0.5 … 0.99 for z*; Fc stays
- * at or below Fs and Fs at or above Fc (MODEL.md §1).
+ * `count` values of `name` around the current state, none of them the current value:
+ * count + 1 evenly spaced over the sweep's range (a factor 4 around the value for the
+ * log-scale parameters, halved to doubled; ±1 for δ; 0.5 … 0.99 for z*), then the one
+ * equal to the current value dropped, or else the one farthest from it (the last when
+ * two are). Fc stays at or below Fs and Fs at or above Fc (MODEL.md §1).
  */
 export function sweepValues(name, state, count = 5) {
   const value = Number(state[name]);
-  const geometric = (lo, hi) => Array.from({ length: count },
-    (_, i) => lo * (hi / lo) ** (i / (count - 1)));
-  const linear = (lo, hi) => Array.from({ length: count }, (_, i) => lo + ((hi - lo) * i) / (count - 1));
   const round = (v) => Number(v.toPrecision(4));
-  let values;
-  if (name === "Fc") values = geometric(value / 2, Math.min(2 * value, Number(state.Fs)));
-  else if (name === "Fs") values = geometric(Math.max(value / 2, Number(state.Fc)), 2 * value);
-  else if (name === "delta") {
-    values = linear(value - 1, value + 1).map((d) => (Math.abs(d) < 0.05 ? 0.05 * Math.sign(d || 1) : d));
-  } else if (name === "z_ba") values = linear(0.5, 0.99);
-  else if (name === "sigma") values = value > 0 ? geometric(value / 2, 2 * value) : linear(0, 0.002);
-  else values = geometric(value / 2, 2 * value);
-  return [...new Set(values.map(round))];
+  let [lo, hi, log] = [value / 2, 2 * value, true];
+  if (name === "Fc") hi = Math.min(2 * value, Number(state.Fs));
+  else if (name === "Fs") lo = Math.max(value / 2, Number(state.Fc));
+  else if (name === "delta") [lo, hi, log] = [value - 1, value + 1, false];
+  else if (name === "z_ba") [lo, hi, log] = [0.5, 0.99, false];
+  else if (name === "sigma" && !(value > 0)) [lo, hi, log] = [0, 0.002, false];
+  const n = count + 1;
+  let values = Array.from({ length: n }, (_, i) => (log
+    ? lo * (hi / lo) ** (i / (n - 1)) : lo + ((hi - lo) * i) / (n - 1)));
+  if (name === "delta") values = values.map((d) => (Math.abs(d) < 0.05 ? 0.05 * Math.sign(d || 1) : d));
+  values = [...new Set(values.map(round))].filter((v) => v !== round(value));
+  const distance = (v) => (log ? Math.abs(Math.log(v / value)) : Math.abs(v - value));
+  while (values.length > count) {
+    const far = values.reduce((best, v, i) => (distance(v) >= distance(values[best]) ? i : best), 0);
+    values.splice(far, 1);
+  }
+  return values;
 }
 
-/** The swept curves on the break-away plot (the chosen F̂) and the hysteresis loop. */
-export function sweepTraces(sweep, state, label) {
-  const breakaway = [];
-  const hysteresis = [];
-  sweep.frames.forEach((frame, i) => {
-    const name = `${label} = ${sweep.values[i]}`;
-    const color = SWEEP_COLORS[i % SWEEP_COLORS.length];
-    breakaway.push({ type: "scatter", mode: "lines", name, legendgroup: `sweep-${i}`,
-      x: frame.breakaway.k, y: frame.breakaway[state.F_hat], line: { color, width: 1.6 },
-      hovertemplate: `${name}<br>k = %{x:.3g} N/s<br>F_ba = %{y:.4g} N<extra></extra>` });
-    hysteresis.push({ type: "scatter", mode: "lines", name, legendgroup: `sweep-${i}`,
-      x: frame.hysteresis.x, y: frame.hysteresis.F, line: { color, width: 1.2 },
-      hovertemplate: `${name}<br>x = %{x:.3g} m<br>F = %{y:.3g} N<extra></extra>` });
+/** Whether two curves are the same up to the served frame's float32 rounding. */
+function sameCurve(a, b) {
+  if (a.length !== b.length) return false;
+  let scale = 0;
+  for (const v of b) if (Number.isFinite(v)) scale = Math.max(scale, Math.abs(v));
+  return a.every((v, i) => Math.abs(v - b[i]) <= 1e-6 * scale || (!Number.isFinite(v) && !Number.isFinite(b[i])));
+}
+
+/** The curve of `frame` that each plot's sweep shows: Fss(v), the loop, the phase curve
+ *  of the current k, the break-away curve of the chosen F̂. */
+const SWEPT = {
+  stribeck: (frame) => ({ x: frame.stribeck.v, y: frame.stribeck.F, unit: "v = %{x:.3g} m/s<br>Fss = %{y:.4g} N" }),
+  hysteresis: (frame) => ({ x: frame.hysteresis.x, y: frame.hysteresis.F, unit: "x = %{x:.3g} m<br>F = %{y:.3g} N" }),
+  phase: (frame) => ({ x: frame.phase.z, y: frame.phase.curves[frame.phase.curves.length - 1].v, unit: "z = %{x:.3f}<br>ẋ = %{y:.3g} m/s" }),
+  breakaway: (frame, state) => ({ x: frame.breakaway.k, y: frame.breakaway[state.F_hat], unit: "k = %{x:.3g} N/s<br>F_ba = %{y:.4g} N" }),
+};
+
+/**
+ * The plots a sweep shows on: those where every swept curve differs from the curve of
+ * `frame` (the state swept from): a sweep of V leaves the loop as it is, a sweep of k
+ * the Stribeck curve, the loop and the break-away curve.
+ */
+export function sweptPlots(sweep, state, frame) {
+  return Object.keys(SWEPT).filter((plot) => {
+    const current = SWEPT[plot](frame, state);
+    return sweep.frames.every((swept) => {
+      const curve = SWEPT[plot](swept, state);
+      return !(sameCurve(curve.y, current.y) && sameCurve(curve.x, current.x));
+    });
   });
-  return { breakaway, hysteresis };
+}
+
+/** The swept curves on each plot of `sweep.plots`. */
+export function sweepTraces(sweep, state, label) {
+  const out = {};
+  for (const plot of sweep.plots) {
+    const curves = sweep.frames.map((swept) => SWEPT[plot](swept, state));
+    out[plot] = curves.map((curve, i) => {
+      const name = `${label} = ${sweep.values[i]}`;
+      return { type: "scatter", mode: "lines", name, legendgroup: `sweep-${i}`, x: curve.x, y: curve.y,
+        line: { color: SWEEP[i % SWEEP.length], width: 1.6 },
+        hovertemplate: `${name}<br>${curve.unit}<extra></extra>` };
+    });
+  }
+  return out;
 }
 
 /**
  * The guided tour through the note's figures: each step sets parameters (a preset and
- * overrides) and says what to look at.
+ * overrides), says what to look at, names the plot it is about and may sweep a
+ * parameter over it.
  */
 export const TOUR = [
-  { preset: "fig5", set: { k: 1 },
+  { preset: "fig5", set: { k: 1 }, plot: "stribeck", sweep: "V",
     text: "Fig. 4, the Stribeck curve (E2): friction falls from the stiction level Fs = 1.5 "
-      + "to the Coulomb level Fc = 1 as the sliding speed grows. V sets where it falls." },
-  { preset: "fig5", set: { k: 1, s: 1 },
+      + "to the Coulomb level Fc = 1 as the sliding speed grows. V sets where it falls: the "
+      + "thin curves are the same model at five other V." },
+  { preset: "fig5", set: { k: 1, s: 1 }, plot: "hysteresis", sweep: "s",
     text: "Fig. 1, presliding (E4–E6′): after each reversal the force builds up along "
       + "f(z) = z(1 − ln z) over the presliding distance 1/s; every reversal starts a new "
-      + "branch, so inner loops nest inside the outer one." },
-  { preset: "fig5", set: { k: 0.01 },
+      + "branch, so inner loops nest inside the outer one. The thin loops are five other s." },
+  { preset: "fig5", set: { k: 0.01 }, plot: "phase",
     text: "Fig. 3, the phase family (E12): ẋ(z) = −k/(s·F̂·ln z). At a slow ramp "
       + "(k = 0.01 N/s) the presliding velocity at z* stays tiny." },
-  { preset: "fig5", set: { k: 20 },
+  { preset: "fig5", set: { k: 20 }, plot: "phase",
     text: "Fig. 3 again at k = 20 N/s: the curve rises by three decades. A fast ramp reaches "
       + "z* at a high velocity, where the Stribeck curve has already fallen." },
-  { preset: "fig5", set: { k: 4 },
+  { preset: "fig5", set: { k: 4 }, plot: "breakaway",
     text: "Fig. 5, the break-away curve (E13): F_ba(k) = Fss(ẋ(z*)) falls from Fs towards "
       + "Fc as k grows. The four F̂ choices differ most around k ≈ 4 N/s." },
-  { preset: "fig5", set: { k: 4 },
+  { preset: "fig5", set: { k: 4 }, plot: "ramp",
     text: "The ramp experiment below simulates m·ẍ + F = k·t. Its break-away force rises "
       + "with k while E13 falls: E13 drops the ∂F/∂ẋ·ẍ term and the inertia. Press Play." },
-  { preset: "viscous", set: { k: 10 },
+  { preset: "viscous", set: { k: 10 }, plot: "breakaway",
     text: "With viscous friction σ the break-away curve dips and then rises again at high "
       + "rates: σ·ẋ* grows linearly with k." },
 ];

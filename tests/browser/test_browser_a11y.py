@@ -63,14 +63,20 @@ def test_the_sliders_answer_the_keyboard_and_show_focus(explorer):
     assert outline[0] != "none" and outline[1] >= 2
 
 
-def test_axe_finds_nothing_serious_with_plots_drawn_ahead(explorer):
-    # an arrow step leaves the next step's plots drawn in hidden graphs under the shown
+def test_axe_finds_nothing_serious_with_live_frames_drawn(explorer):
+    # an arrow step draws a live frame on a canvas in each plot before Plotly settles
     explorer.open("?sim=0")
     page = explorer.page
     slider = page.get_by_label("σ (sigma) [N·s/m] slider", exact=True)
     slider.focus()
+    frames = explorer.frames()
     slider.press("ArrowRight")
+    until(page, f"window.breakaway.frames() > {frames}")
+    live = page.evaluate("""() => [...document.querySelectorAll('#plots canvas.live-layer')].map(
+        (c) => [c.closest('.plot').id, c.getAttribute('aria-hidden'),
+                getComputedStyle(c).pointerEvents])""")
+    assert sorted(plot for plot, _, _ in live) == sorted(
+        f"plot-{p}" for p in ("stribeck", "hysteresis", "phase", "breakaway"))
+    assert all(hidden == "true" and events == "none" for _, hidden, events in live)
     explorer.ready()
-    until(page, "window.breakaway.aheadDrawn()")
-    assert page.locator(".plot-ahead .main-svg").count() > 0
     assert serious_violations(page) == []

@@ -4,7 +4,6 @@ others stay as they were."""
 from __future__ import annotations
 
 import json
-from urllib.parse import parse_qs, urlparse
 
 import numpy as np
 import pytest
@@ -12,7 +11,7 @@ import pytest
 from breakaway.dynamics import simulate_breakaway
 from breakaway.params import DEFAULTS, FIG3_RATES
 
-from browser_model import assert_plots_match_model, until, values
+from browser_model import assert_plots_match_model, values
 
 pytestmark = pytest.mark.browser
 
@@ -149,51 +148,7 @@ def explore_requests(page) -> list[str]:
     return sent
 
 
-def test_arrow_steps_find_their_frame_asked_for_ahead_and_it_is_the_models(explorer):
-    # Fc = Fs: every step right on Fc moves Fs with it, so the frame asked for ahead must
-    # follow the coupling too
-    explorer.open("?sim=0&Fc=1.5&Fs=1.5")
-    page = explorer.page
-    slider = page.get_by_label("Fc [N] slider", exact=True)
-    slider.focus()
-    history = page.evaluate("history.length")
-    hits = page.evaluate("window.breakaway.prefetchHits()")
-    slider.press("ArrowRight")
-    explorer.ready()
-    first = explorer.state()
-    assert first["Fc"] > 1.5 and first["Fs"] == first["Fc"]
-    assert page.evaluate("window.breakaway.prefetchHits()") == hits  # nothing was ahead yet
-    sent = explore_requests(page)
-    slider.press("ArrowRight")
-    explorer.ready()
-    second = explorer.state()
-    assert second["Fc"] > first["Fc"] and second["Fs"] == second["Fc"]
-    assert page.evaluate("window.breakaway.prefetchHits()") == hits + 1
-    assert_plots_match_model(explorer, second)
-    # the frame for the second step was on its way before the key was pressed: what the
-    # page sent since is the next step ahead, never the state it now shows
-    current = {"Fc": second["Fc"], "Fs": second["Fs"]}
-    assert all(json.loads(body)["Fc"] != current["Fc"] for body in sent)
-    # each step is a history entry, written once its frame is drawn
-    assert page.evaluate("history.length") == history + 2
-    query = parse_qs(urlparse(page.url).query)
-    assert float(query["Fc"][0]) == second["Fc"] and float(query["Fs"][0]) == second["Fs"]
-    # turning back: the step asked for ahead (further right) is not used
-    slider.press("ArrowLeft")
-    explorer.ready()
-    assert page.evaluate("window.breakaway.prefetchHits()") == hits + 1
-    assert explorer.state()["Fc"] == first["Fc"]
-    assert_plots_match_model(explorer)
-    # Plotly's configuration is given with a plot's first drawing only; it holds after
-    # redraws: no export button in the explorer's toolbar, none in the tab order
-    titles = page.evaluate("[...document.querySelectorAll('#plots .modebar-btn')]"
-                           ".map(b => b.getAttribute('data-title') || '')")
-    assert titles and not any("png" in t.lower() for t in titles)
-    assert page.evaluate("[...document.querySelectorAll('#plots .modebar-btn')]"
-                         ".every(b => b.tabIndex === -1)")
-
-
-def test_a_pointer_on_the_slider_asks_for_nothing_ahead(explorer):
+def test_a_click_on_the_slider_asks_for_its_frame_once(explorer):
     explorer.open("?sim=0")
     page = explorer.page
     slider = page.get_by_label("k [N/s] slider", exact=True)
@@ -205,7 +160,7 @@ def test_a_pointer_on_the_slider_asks_for_nothing_ahead(explorer):
     page.mouse.click(box["x"] + box["width"] * 0.8, box["y"] + box["height"] / 2)
     explorer.ready()
     page.wait_for_timeout(300)
-    assert len(sent) == 1  # the clicked position's frame, and no step ahead of it
+    assert len(sent) == 1  # the clicked position's frame, asked for once it is released
     assert explorer.state()["k"] == json.loads(sent[0])["k"]
     assert_plots_match_model(explorer)
 
@@ -223,90 +178,3 @@ def test_arrow_steps_of_the_mass_ask_for_no_frame(explorer):
     page.wait_for_timeout(300)
     assert explorer.state()["m"] > DEFAULTS["m"]
     assert sent == []
-
-
-def surfaces(page) -> dict:
-    return page.evaluate("window.breakaway.surfaces()")
-
-
-def step_and_wait_drawn_ahead(explorer, slider, key="ArrowRight") -> None:
-    slider.press(key)
-    explorer.ready()
-    until(explorer.page, "window.breakaway.aheadDrawn()")
-
-
-def test_an_arrow_step_shows_the_plots_drawn_ahead_and_they_are_the_models(explorer):
-    explorer.open("?sim=0")
-    page = explorer.page
-    slider = page.get_by_label("Fc [N] slider", exact=True)
-    slider.focus()
-    step_and_wait_drawn_ahead(explorer, slider)
-    before = surfaces(page)
-    assert before["drawnAhead"] >= 4  # Fc changes all four plots
-    slider.press("ArrowRight")
-    explorer.ready()
-    after = surfaces(page)
-    assert after["swaps"] == before["swaps"] + 4
-    state = explorer.state()
-    assert_plots_match_model(explorer, state)
-    # one graph of each plot is seen and named; the other is hidden from eyes and
-    # assistive technology alike
-    for plot in PLOTS:
-        shown = page.locator(f"#plot-{plot}")
-        assert shown.is_visible() and shown.get_attribute("aria-label")
-        assert shown.get_attribute("class").split()[0] == "plot"
-        hidden = page.locator(f"#plot-{plot}-ahead")
-        assert not hidden.is_visible()
-        assert hidden.get_attribute("aria-hidden") == "true"
-        assert hidden.get_attribute("aria-label") is None
-    # turning back: the step drawn ahead (further right) is not the one shown
-    until(page, "window.breakaway.aheadDrawn()")
-    swaps = surfaces(page)["swaps"]
-    slider.press("ArrowLeft")
-    explorer.ready()
-    assert surfaces(page)["swaps"] == swaps
-    assert_plots_match_model(explorer)
-
-
-def test_a_zoomed_plot_keeps_its_zoom_and_hidden_traces_and_is_drawn_not_swapped(explorer):
-    explorer.open("?sim=0")
-    page = explorer.page
-    slider = page.get_by_label("Fs [N] slider", exact=True)
-    slider.focus()
-    step_and_wait_drawn_ahead(explorer, slider)
-    # what a drag on the Stribeck plot does, and a click on the loop's first legend entry
-    page.evaluate("Plotly.relayout('plot-stribeck', {'xaxis.range': [-0.5, 0.5]})")
-    page.locator("#plot-hysteresis .legendtoggle").first.click()
-    # Plotly waits out a double click before it hides the trace
-    until(page, "document.getElementById('plot-hysteresis').data[0].visible === 'legendonly'")
-    swaps = surfaces(page)["swaps"]
-    slider.press("ArrowRight")
-    explorer.ready()
-    assert page.evaluate("document.getElementById('plot-stribeck').layout.xaxis.range") \
-        == [-0.5, 0.5]
-    assert page.evaluate("document.getElementById('plot-hysteresis').data[0].visible") \
-        == "legendonly"
-    assert surfaces(page)["swaps"] == swaps + 2  # the other two were drawn ahead
-    assert_plots_match_model(explorer, explorer.state())
-
-
-def test_a_held_arrow_key_ends_on_the_models_plots(explorer):
-    # key repeat, 30 ms apart: presses land while frames are asked for and plots drawn
-    # ahead; whatever was in flight, the page ends on the last state, as the model says
-    explorer.open("?sim=0")
-    page = explorer.page
-    slider = page.get_by_label("δ (delta) slider", exact=True)
-    slider.focus()
-    for i in range(24):
-        page.keyboard.press("ArrowRight" if i < 16 else "ArrowLeft")
-        page.wait_for_timeout(30)
-    explorer.ready()
-    state = explorer.state()
-    assert state["delta"] != DEFAULTS["delta"]
-    assert float(page.get_by_label("δ (delta)", exact=True).input_value()) == state["delta"]
-    assert_plots_match_model(explorer, state)
-    # and what is drawn ahead then is the step after it, not a step already left behind
-    until(page, "window.breakaway.aheadDrawn()")
-    slider.press("ArrowLeft")
-    explorer.ready()
-    assert_plots_match_model(explorer, explorer.state())

@@ -30,37 +30,76 @@ def test_pinned_curves_stay_while_a_slider_moves_and_clear_in_one_click(explorer
     assert not [n for n in names(explorer, "breakaway") if n.startswith("pinned")]
 
 
-def test_a_sweep_overlays_at_least_five_distinct_curves(explorer):
+def swept(explorer, plot: str, label: str) -> dict:
+    return {n: t for n, t in explorer.traces(plot).items() if n.startswith(f"{label} = ")}
+
+
+def differs_from(curve: dict, other: dict) -> bool:
+    """Whether two plotted curves differ in x or in y beyond float32 round-off."""
+    import numpy as np
+    for axis in ("x", "y"):
+        a = np.array(curve[axis], dtype=float)
+        b = np.array(other[axis], dtype=float)
+        if a.shape != b.shape or not np.allclose(a, b, rtol=1e-6, atol=1e-9, equal_nan=True):
+            return True
+    return False
+
+
+def test_a_sweep_overlays_five_curves_that_all_differ_from_the_current_one(explorer):
     explorer.open("?sim=0")
     explorer.page.get_by_label("Sweep", exact=True).select_option("V")
     explorer.page.get_by_role("button", name="Run sweep").click()
     status = explorer.page.locator("#sweep-status")
     status.get_by_text("curves of").wait_for()
-    traces = explorer.traces("breakaway")
-    swept = {n: t for n, t in traces.items() if n.startswith("V = ")}
-    assert len(swept) >= 5
-    assert len({tuple(t["y"]) for t in swept.values()}) == len(swept)
-    loops = [n for n in names(explorer, "hysteresis") if n.startswith("V = ")]
-    assert len(loops) == len(swept)
+    state = explorer.state()
+    # V moves the Stribeck curve and the break-away curve, not the loop nor the phase family
+    for plot, current in (("stribeck", "Fss(v)"), ("breakaway", f"F̂ = {state['F_hat']}")):
+        curves = swept(explorer, plot, "V")
+        assert len(curves) == 5, plot
+        assert all(float(name.split(" = ")[1]) != state["V"] for name in curves)
+        now = explorer.traces(plot)[current]
+        assert all(differs_from(curve, now) for curve in curves.values()), plot
+        assert len({(tuple(c["x"]), tuple(c["y"])) for c in curves.values()}) == 5
+    assert swept(explorer, "hysteresis", "V") == {} and swept(explorer, "phase", "V") == {}
+    assert "leaves the hysteresis loop" in status.inner_text()
+    # s moves the loop: five loops, none the current one
+    explorer.page.get_by_label("Sweep", exact=True).select_option("s")
+    explorer.page.get_by_role("button", name="Run sweep").click()
+    status.get_by_text("curves of s").wait_for()
+    loops = swept(explorer, "hysteresis", "s")
+    assert len(loops) == 5 and all(float(n.split(" = ")[1]) != 1 for n in loops)
+    current = explorer.traces("hysteresis")["moving +x"]
+    assert all(differs_from(loop, current) for loop in loops.values())
 
 
 def test_the_tour_steps_through_the_figures_and_changes_the_plots(explorer):
+    # the page opens on the tour's first preset: the first step must still change the plots
     explorer.open("?sim=0")
+    before = {plot: explorer.traces(plot) for plot in ("stribeck", "hysteresis", "phase", "breakaway")}
     explorer.page.get_by_role("button", name="Start the tour").click()
     explorer.ready()
     step = explorer.page.locator("#tour-step")
     assert step.inner_text().startswith("Step 1 of")
     assert "Fig. 4" in step.inner_text()
+    explorer.page.locator("#sweep-status").get_by_text("curves of V").wait_for()
+    after = explorer.traces("stribeck")
+    assert len(after) == len(before["stribeck"]) + 5
+    assert all(differs_from(curve, after["Fss(v)"]) for curve in swept(explorer, "stribeck", "V").values())
     seen = []
     for _ in range(3):
         explorer.page.get_by_role("button", name="Next step").click()
         explorer.ready()
+        if not seen:
+            # step 2 is about the loop: its sweep is of s
+            explorer.page.locator("#sweep-status").get_by_text("curves of s").wait_for()
+            assert len(swept(explorer, "hysteresis", "s")) == 5
         seen.append((step.inner_text(), explorer.state()["k"],
                      explorer.traces("phase")[next(n for n in names(explorer, "phase")
                                                    if n.startswith("current k"))]["y"][-1]))
     assert seen[0][0].startswith("Step 2 of") and "Fig. 1" in seen[0][0]
     assert "Fig. 3" in seen[1][0] and seen[1][1] == 0.01
     assert seen[2][1] == 20 and seen[2][2] > 100 * seen[1][2]
+    assert explorer.page.locator("#sweep-status").inner_text() == ""  # Fig. 3 sweeps nothing
 
 
 def test_normalised_presets_say_so_and_the_lab_preset_is_si(explorer):

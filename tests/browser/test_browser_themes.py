@@ -33,6 +33,43 @@ def test_presentation_mode_from_the_url_and_the_toggle(explorer):
     assert "present=1" not in explorer.page.url
 
 
+#: Font sizes of every text on the page that is shown: each element with text of its
+#: own (superscripts and subscripts of an equation aside), and Plotly's tick labels,
+#: legend entries and axis titles.
+TEXT_SIZES = """() => {
+  const out = [];
+  for (const element of document.querySelectorAll('body *')) {
+    if (element.closest('svg, sup, sub, script, style, .skip-link, [hidden]')) continue;
+    const own = [...element.childNodes].some((n) => n.nodeType === 3 && n.textContent.trim());
+    const field = element.matches('input:not([type="checkbox"]):not([type="range"]), select')
+      || (element.matches('button') && element.textContent.trim() !== '');
+    if ((!own && !field) || !element.getClientRects().length) continue;
+    if (getComputedStyle(element).visibility !== 'visible') continue;
+    out.push([element.tagName + '#' + element.id + '.' + element.className, parseFloat(getComputedStyle(element).fontSize)]);
+  }
+  for (const text of document.querySelectorAll(
+      '#plots .xtick text, #plots .ytick text, #plots .y2tick text, #plots .legendtext, #plots .xtitle, #plots .ytitle')) {
+    if (!text.closest('.plot')) continue;
+    out.push(['plotly ' + text.getAttribute('class') + ' ' + text.textContent, parseFloat(getComputedStyle(text).fontSize)]);
+  }
+  return out;
+}"""
+
+
+def test_presentation_mode_sets_every_text_from_18_px(explorer):
+    explorer.page.set_viewport_size({"width": 1920, "height": 1080})
+    explorer.open("?sim=1&present=1")
+    explorer.sim_ready()
+    explorer.page.evaluate("window.breakaway.rampReady()")
+    sizes = explorer.page.evaluate(TEXT_SIZES)
+    assert len(sizes) > 150
+    assert [entry for entry in sizes if entry[1] < 18] == []
+    # without presentation mode the same page has smaller text
+    explorer.page.get_by_label("Presentation mode (large type, heavy lines)").uncheck()
+    explorer.ready()
+    assert min(size for _, size in explorer.page.evaluate(TEXT_SIZES)) < 18
+
+
 def test_dark_mode_follows_the_system(explorer):
     explorer.page.emulate_media(color_scheme="dark")
     explorer.open("?sim=0")

@@ -1,0 +1,217 @@
+"""The explorer at the speed of a hand: input to plots showing the new value, in the page.
+
+    .venv/bin/python benchmarks/ui_latency.py [--presses N] [--sliders Fc,Fs,...] [--only keys,slow,drag]
+
+Headless Chromium, 1280×800, the default page (the ramp and the simulation on). Events
+come from timers in the page, so their spacing is the page's, not Playwright's:
+
+- keys: keydown events on the focused slider, 150 ms apart, five presses one way and
+  five back (so half the presses go each way, and every fifth turns); `--presses` per
+  slider. Figures for presses to the right, to the left, and for the turns.
+- slow keys: the same, at a person's uneven pace: 200–700 ms apart (seeded uniform), so
+  that the settled Plotly drawing runs between presses and a press may land on it.
+- drag: 2 s of `input` events at 60 per second (a pointer dragging the slider) that
+  move it back and forth over up to 100 positions, then `change` (the release).
+
+A frame counts when `#plots` `data-frame` changes (for m: `data-ramp-frame`, the ramp
+experiment being the only plot m moves) and what it shows is the state with the new
+value; latency is from the event to that frame, both read with `performance.now()`. A
+drag's latency is from each input to the first frame showing it or a later input;
+frames per second count the frames shown during the drag; "last" is from the last input
+to the frame showing its value. The obvious alternative runs in the same session: every
+input drawn by `Plotly.react` as it comes (`window.breakaway.live(false)`: no live
+canvas, no waiting for the hand to rest).
+
+Goal (issue 21): p50 ≤ 16 ms and p95 ≤ 33 ms for every slider, either way, keys or
+pointer; during a drag ≥ 30 frames per second and the last value shown ≤ 50 ms after the
+last input. Nothing is asserted; tests check behaviour, this file reports speed.
+"""
+
+from __future__ import annotations
+
+import argparse
+import random
+import sys
+
+from bench_explorer import load_average, machine, pct
+from bench_page import Server, launch
+
+SLIDERS = ["Fc", "Fs", "V", "delta", "sigma", "k", "s", "z_ba", "m"]
+
+#: Installed for one run on one slider: records each frame shown (time, value shown).
+HARNESS = """
+async ({name, mode, presses, gaps, seconds, hz}) => {
+  const plots = document.getElementById('plots');
+  const range = document.getElementById(name + '-range');
+  const ramp = name === 'm';
+  const attr = ramp ? 'data-ramp-frame' : 'data-frame';
+  const shownValue = () => ramp ? window.breakaway.viewParams('ramp')?.m : window.breakaway.state()[name];
+  const sleep = (ms) => new Promise((resolve) => setTimeout(resolve, ms));
+  const shown = [];
+  let last = plots.getAttribute(attr);
+  const observer = new MutationObserver(() => {
+    const value = plots.getAttribute(attr);
+    if (value !== last) { last = value; shown.push([performance.now(), shownValue()]); }
+  });
+  observer.observe(plots, {attributes: true, attributeFilter: [attr]});
+  range.focus();
+  const inputs = [];
+  if (mode === 'keys') {
+    // five steps towards the farther end, five back, …
+    const room = [range.value - range.min, range.max - range.value];
+    const keys = room[1] >= room[0] ? ['ArrowRight', 'ArrowLeft'] : ['ArrowLeft', 'ArrowRight'];
+    for (let i = 0; i < presses; i++) {
+      await sleep(gaps[i % gaps.length]);
+      const key = keys[Math.floor(i / 5) % 2];
+      const event = new KeyboardEvent('keydown', {key, bubbles: true, cancelable: true});
+      const t = performance.now();
+      range.dispatchEvent(event);
+      inputs.push({t, value: window.breakaway.state()[name], key, turn: i > 0 && i % 5 === 0});
+    }
+  } else {
+    const count = Math.round(seconds * hz);
+    const start = Number(range.value);
+    const span = Math.min(100, Math.floor((range.max - range.min) / 4));
+    const reach = start + span <= Number(range.max) ? span : -span;
+    range.dispatchEvent(new PointerEvent('pointerdown', {bubbles: true}));
+    for (let i = 1; i <= count; i++) {
+      await sleep(1000 / hz);
+      // there and back: a triangle over the drag
+      const phase = i / count;
+      const offset = Math.round(reach * (phase < 0.5 ? 2 * phase : 2 - 2 * phase));
+      range.value = String(start + (offset === 0 && i < count ? Math.sign(reach) : offset));
+      const t = performance.now();
+      range.dispatchEvent(new Event('input', {bubbles: true}));
+      inputs.push({t, value: window.breakaway.state()[name]});
+    }
+    range.dispatchEvent(new Event('change', {bubbles: true}));
+    range.dispatchEvent(new PointerEvent('pointerup', {bubbles: true}));
+  }
+  await window.breakaway.ready();
+  await window.breakaway.rampReady();
+  await sleep(100);
+  observer.disconnect();
+  return {inputs, shown};
+}
+"""
+
+
+def key_latencies(run: dict) -> list[tuple[dict, float]]:
+    """Each press and the time to the first frame showing its value [ms]."""
+    out = []
+    for press in run["inputs"]:
+        frame = next((t for t, value in run["shown"] if t >= press["t"] and value == press["value"]), None)
+        if frame is not None:
+            out.append((press, frame - press["t"]))
+    return out
+
+
+def drag_figures(run: dict) -> dict:
+    """Latency per input (to a frame showing it or a later input), frames per second
+    during the drag, and the last input to the frame showing it [ms]."""
+    inputs = run["inputs"]
+    latencies = []
+    for i, event in enumerate(inputs):
+        later = {e["value"] for e in inputs[i:]}
+        frame = next((t for t, value in run["shown"] if t >= event["t"] and value in later), None)
+        if frame is not None:
+            latencies.append(frame - event["t"])
+    start, end = inputs[0]["t"], inputs[-1]["t"]
+    during = [t for t, _ in run["shown"] if start <= t <= end]
+    final = next((t for t, value in run["shown"] if t >= end and value == inputs[-1]["value"]), None)
+    return {"latencies": latencies, "fps": len(during) / ((end - start) / 1000),
+            "last": None if final is None else final - end}
+
+
+def run_variant(page, sliders, mode, args) -> dict:
+    out = {}
+    pace = random.Random(21)
+    for name in sliders:
+        gaps = [pace.uniform(200, 700) for _ in range(args.presses)] if mode == "slow" else [150]
+        out[name] = page.evaluate(HARNESS, {
+            "name": name, "mode": "keys" if mode in ("keys", "slow") else "drag",
+            "presses": args.presses, "gaps": gaps, "seconds": 2, "hz": 60})
+    return out
+
+
+def fmt(values, q) -> str:
+    return f"{pct(values, q):6.1f}" if values else "     –"
+
+
+def report_keys(results: dict, sliders: list[str]) -> None:
+    labels = list(results)
+    print(f"   {'slider':7s}" + "".join(
+        f" | {label[:24]:>24s}: right p50/p95, left p50/p95, turns p50" for label in labels))
+    totals = {label: [] for label in labels}
+    for name in sliders:
+        row = f"   {name:7s}"
+        for label in labels:
+            pairs = key_latencies(results[label][name])
+            totals[label] += [ms for _, ms in pairs]
+            right = [ms for press, ms in pairs if press["key"] == "ArrowRight"]
+            left = [ms for press, ms in pairs if press["key"] == "ArrowLeft"]
+            turns = [ms for press, ms in pairs if press["turn"]]
+            row += (f" | {fmt(right, .5)} {fmt(right, .95)}  {fmt(left, .5)} {fmt(left, .95)} "
+                    f" {fmt(turns, .5)}  ({len(pairs)}/{len(results[label][name]['inputs'])} shown)")
+        print(row)
+    for label in labels:
+        every = totals[label]
+        print(f"   every slider, {label}: p50 {pct(every, .5):.1f} ms, p95 {pct(every, .95):.1f} ms, "
+              f"max {max(every):.1f} ms ({len(every)} presses)")
+
+
+def report_drags(results: dict, sliders: list[str]) -> None:
+    labels = list(results)
+    print(f"   {'slider':7s}" + "".join(
+        f" | {label[:24]:>24s}: frames/s, p50, p95, last [ms]" for label in labels))
+    for name in sliders:
+        row = f"   {name:7s}"
+        for label in labels:
+            figures = drag_figures(results[label][name])
+            last = "   –" if figures["last"] is None else f"{figures['last']:5.1f}"
+            row += (f" | {figures['fps']:6.1f} {fmt(figures['latencies'], .5)} "
+                    f"{fmt(figures['latencies'], .95)} {last}")
+        print(row)
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--presses", type=int, default=40)
+    parser.add_argument("--sliders", default=",".join(SLIDERS))
+    parser.add_argument("--only", default="keys,slow,drag")
+    args = parser.parse_args(argv)
+    sliders = args.sliders.split(",")
+    print(f"Machine: {machine()}; load average at the start {load_average()}")
+    from playwright.sync_api import sync_playwright
+
+    variants = (("the page (live frames)", []),
+                ("Plotly.react per input", ["window.breakaway.live(false)"]))
+    with Server() as server, sync_playwright() as playwright:
+        browser = launch(playwright)
+        for mode in args.only.split(","):
+            results = {}
+            for label, setup in variants:
+                page = browser.new_page(viewport={"width": 1280, "height": 800})
+                page.set_default_timeout(600_000)
+                page.goto(f"{server.url}/")
+                page.evaluate("window.breakaway.rampReady()")
+                page.evaluate("window.breakaway.simReady()")
+                for script in setup:
+                    page.evaluate(script)
+                results[label] = run_variant(page, sliders, mode, args)
+                page.close()
+            title = {"keys": "Key presses 150 ms apart", "slow": "Key presses 200–700 ms apart (settles in between)",
+                     "drag": "Pointer drags: 2 s of input events at 60/s, then the release"}[mode]
+            print(f"\n{title} (load average {load_average()}), event → frame showing the value [ms]:")
+            if mode == "drag":
+                report_drags(results, sliders)
+            else:
+                report_keys(results, sliders)
+        browser.close()
+    print(f"\nLoad average at the end: {load_average()}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

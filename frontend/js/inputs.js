@@ -1,0 +1,140 @@
+// From the controls to the state: each slider, number box, menu and button changes
+// `app.state` and hands it to the render path; committed changes become history
+// entries (store.js), and Back and Forward walk through them.
+
+import {
+  PARAMS, couple, moveSlider, parseNumber, validate, writeControls,
+} from "./controls.js";
+import { onSchemeChange } from "./draw.js";
+import { exportCsv, exportPng } from "./export.js";
+import { redraw, refresh, settleNow } from "./render.js";
+import { defaultState, fromQuery, presetState } from "./state.js";
+import { $, app, commit } from "./store.js";
+import { drawView, prefetchViews } from "./viewrequests.js";
+import { requestViews } from "./views.js";
+
+/** Show `state`: into the controls, the history (unless `push` is false), the plots. */
+export function setState(state, { push = true } = {}) {
+  app.state = state;
+  writeControls(state);
+  if (push) commit();
+  refresh();
+}
+
+/** Every plot drawn again as the page is styled now (presentation mode, dark mode). */
+function restyle() {
+  if (!app.frame) return;
+  redraw();
+  for (const view of requestViews()) drawView(view.id);
+}
+
+/** Where a key moves a range input: one position, a tenth of the range, the ends (as
+ *  the browser does; the page moves it itself, so that the plots follow at once). */
+export function keyTarget(key, range) {
+  const value = Number(range.value);
+  const min = Number(range.min);
+  const max = Number(range.max);
+  const tenth = Math.max(1, Math.round((max - min) / 10));
+  const moves = {
+    ArrowRight: value + 1, ArrowUp: value + 1, ArrowLeft: value - 1, ArrowDown: value - 1,
+    PageUp: value + tenth, PageDown: value - tenth, Home: min, End: max,
+  };
+  return key in moves ? Math.min(max, Math.max(min, moves[key])) : null;
+}
+
+/** The states one key press away on `spec`'s slider, on either side. */
+function neighbours(spec, range) {
+  const out = [];
+  for (const step of [-1, 1]) {
+    const position = Number(range.value) + step;
+    if (position < Number(range.min) || position > Number(range.max)) continue;
+    const state = { ...app.state };
+    moveSlider(state, spec, position);
+    if (!Object.keys(validate(state)).length) out.push(state);
+  }
+  return out;
+}
+
+function wireParameters() {
+  for (const spec of PARAMS) {
+    const box = $(spec.name);
+    const range = $(`${spec.name}-range`);
+    const moved = () => {
+      const coupled = moveSlider(app.state, spec, range.value);
+      box.value = String(app.state[spec.name]);
+      if (coupled) writeControls(app.state, { except: range });
+      refresh({ hold: true });
+    };
+    range.addEventListener("input", moved);
+    // a slider taken by the keyboard: what only a request can draw is asked for ahead
+    range.addEventListener("focus", () => prefetchViews(neighbours(spec, range)));
+    range.addEventListener("keydown", (event) => {
+      if (event.altKey || event.ctrlKey || event.metaKey) return;
+      const target = keyTarget(event.key, range);
+      if (target === null) return;
+      event.preventDefault();
+      if (target !== Number(range.value)) {
+        range.value = String(target);
+        moved();
+        commit();
+      }
+      // the next press either way needs no wait for what only a request can draw
+      prefetchViews(neighbours(spec, range));
+    });
+    box.addEventListener("input", () => {
+      const value = parseNumber(box.value);
+      app.state[spec.name] = Number.isNaN(value) ? box.value : value;
+      couple(app.state, spec.name);
+      writeControls(app.state, { except: box });
+      refresh({ hold: true });
+    });
+    for (const control of [range, box]) {
+      control.addEventListener("change", () => {
+        commit();
+        settleNow();
+      });
+    }
+  }
+}
+
+export function wireControls() {
+  wireParameters();
+  $("F_hat").addEventListener("change", () => {
+    app.state.F_hat = $("F_hat").value;
+    commit();
+    refresh();
+  });
+  $("present").addEventListener("change", () => {
+    app.state.present = $("present").checked;
+    document.body.classList.toggle("present", app.state.present);
+    commit();
+    restyle();
+  });
+  onSchemeChange(restyle);
+  $("preset").addEventListener("change", () => {
+    const preset = app.presets.find((p) => p.name === $("preset").value);
+    if (preset) setState(presetState(preset, app.defaults, app.state));
+  });
+  $("reset").addEventListener("click", () => setState(defaultState(app.defaults)));
+  $("copy-link").addEventListener("click", async () => {
+    // said under the button, where the person looks; where the clipboard is refused
+    // (no permission, no secure context) the link is shown to copy by hand
+    const status = $("copy-status");
+    try {
+      await navigator.clipboard.writeText(window.location.href);
+      status.textContent = "Link copied.";
+    } catch {
+      status.textContent = `Copy this link: ${window.location.href}`;
+    }
+  });
+  for (const button of document.querySelectorAll("[data-export]")) {
+    button.addEventListener("click", () => {
+      if (button.dataset.export === "csv") exportCsv(button.dataset.plot);
+      else exportPng(button.dataset.plot);
+    });
+  }
+  window.addEventListener("popstate", () => {
+    app.commitPending = false; // the entry walked to is the state now
+    setState(fromQuery(window.location.search, app.defaults), { push: false });
+  });
+}

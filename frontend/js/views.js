@@ -1,0 +1,54 @@
+// The registry of the explorer's views: every plot the render path draws is one entry.
+//
+// A view is {id, figure(ctx), axes, source, request?, redraws?}:
+//   id       its plot is the element #plot-<id>;
+//   figure   a pure function of ctx = {frame, state} (and the page's app data) to a fresh
+//            Plotly figure {data, layout};
+//   axes     {x, y}: axis titles, also the CSV columns of its export;
+//   source   "frame": drawn from each /api/explore frame (the four model plots);
+//            "request": drawn from the answer of its own request, `request` =
+//            {url, body(state) → JSON body, debounceMs}, asked for once the frame of a
+//            state is drawn, the previous one aborted (viewrequests.js);
+//   redraws  frame views whose figure shows this view's answer too (e.g. the ramp's
+//            simulated path over the phase family), redrawn when it arrives.
+// Overlays add traces to the figures of other views (pinned curves, a sweep, measured
+// points): registerOverlay(fn), fn(figures, ctx) returning nothing, replacing figures in
+// place. A new view (a control loop, say) registers itself in its own module; the render
+// path walks the registry and needs no change.
+
+const registry = new Map();
+const overlays = [];
+
+export function registerView(view) {
+  registry.set(view.id, view);
+}
+
+export function viewOf(id) {
+  return registry.get(id);
+}
+
+/** Ids of the views drawn from the explore frame, in registration order. */
+export function frameViewIds() {
+  return [...registry.values()].filter((view) => view.source === "frame").map((view) => view.id);
+}
+
+/** The views with a request of their own. */
+export function requestViews() {
+  return [...registry.values()].filter((view) => view.request);
+}
+
+export function registerOverlay(overlay) {
+  overlays.push(overlay);
+}
+
+/**
+ * The figures the page shows for `state`, whose curves `frame` holds (every frame view,
+ * or those in `ids`): each view's figure, then every overlay applied.
+ */
+export function pageFigures(frame, state, ids = frameViewIds()) {
+  const ctx = { frame, state };
+  const out = {};
+  for (const id of ids) out[id] = registry.get(id).figure(ctx);
+  for (const overlay of overlays) overlay(out, ctx);
+  return out;
+}

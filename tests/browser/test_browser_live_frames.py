@@ -1,0 +1,233 @@
+"""Live frames: while a hand moves a slider (keys either way, a pointer drag) the plots
+are drawn at once on a canvas in Plotly's own axes, from the curves computed in the
+page; once the hand stops, the server's frame is drawn by Plotly."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from breakaway.params import DEFAULTS
+
+from browser_model import assert_plots_match_model, until
+
+pytestmark = pytest.mark.browser
+
+MODEL_PLOTS = ("stribeck", "hysteresis", "phase", "breakaway")
+
+#: Each change of #plots data-frame / data-ramp-frame, with what the page had done when
+#: it came: Plotly calls, live drawings, and /api/explore and /api/ramp requests sent.
+RECORD = """
+(() => {
+  window.__sent = {explore: [], ramp: []};
+  const original = window.fetch;
+  window.fetch = (url, options) => {
+    for (const name of ['explore', 'ramp']) {
+      if (String(url).endsWith('/api/' + name)) window.__sent[name].push(JSON.parse(options.body));
+    }
+    return original(url, options);
+  };
+  window.__frames = [];
+  document.addEventListener('DOMContentLoaded', () => {
+    const plots = document.getElementById('plots');
+    const last = {};
+    new MutationObserver((records) => {
+      for (const record of records) {
+        const value = plots.getAttribute(record.attributeName);
+        if (last[record.attributeName] === value) continue; // written again, unchanged
+        last[record.attributeName] = value;
+        window.__frames.push({what: record.attributeName, value,
+          ready: plots.dataset.ready, surfaces: window.breakaway.surfaces(),
+          explore: window.__sent.explore.length, ramp: window.__sent.ramp.length});
+      }
+    }).observe(plots, {attributes: true, attributeFilter: ['data-frame', 'data-ramp-frame']});
+  });
+})();
+"""
+
+
+def recorded(page) -> list[dict]:
+    return page.evaluate("window.__frames")
+
+
+def sent(page, name: str) -> list[dict]:
+    return page.evaluate(f"window.__sent.{name}")
+
+
+def frame_changes(page, since: int) -> list[dict]:
+    """The data-frame changes after the first `since` records."""
+    return [r for r in recorded(page)[since:] if r["what"] == "data-frame"]
+
+
+def assert_settled_without_canvas(page) -> None:
+    """After the settle every plot shows Plotly's drawing, no live canvas."""
+    for plot in MODEL_PLOTS:
+        assert page.evaluate(
+            """(id) => { const gd = document.getElementById('plot-' + id);
+                const canvas = gd.querySelector('canvas.live-layer');
+                return gd.dataset.live !== 'true' && (!canvas || canvas.style.display === 'none')
+                    && getComputedStyle(gd.querySelector('.cartesianlayer')).visibility === 'visible'; }""",
+            plot), plot
+
+
+def test_arrow_steps_either_way_are_drawn_live_at_once_then_settle(explorer):
+    explorer.page.add_init_script(RECORD)
+    explorer.open("?sim=0&Fc=1.5&Fs=1.5")
+    page = explorer.page
+    slider = page.get_by_label("Fc [N] slider", exact=True)
+    slider.focus()
+    history = page.evaluate("history.length")
+    for key in ("ArrowRight", "ArrowLeft", "ArrowLeft", "ArrowRight"):
+        mark = len(recorded(page))
+        before = page.evaluate("window.breakaway.surfaces()")
+        requests = len(sent(page, "explore"))
+        slider.press(key)
+        until(page, f"window.__frames.length > {mark}")
+        first = frame_changes(page, mark)[0]
+        # shown live: the four plots on their canvases, with no request and no Plotly call
+        assert first["ready"] == "false"
+        assert first["surfaces"]["live"] == before["live"] + 4
+        assert first["surfaces"]["reacts"] == before["reacts"]
+        assert first["explore"] == requests
+        explorer.ready()
+        # then settled: one request for the state the hand stopped on, Plotly's plots
+        assert len(sent(page, "explore")) == requests + 1
+        assert len(frame_changes(page, mark)) == 1  # the settle shows no new state
+        state = explorer.state()
+        assert state["Fs"] >= state["Fc"]  # Fs follows Fc up (MODEL.md §1)
+        assert_plots_match_model(explorer, state)
+        assert_settled_without_canvas(page)
+    assert page.evaluate("history.length") == history + 4  # each step a history entry
+
+
+def test_a_held_arrow_key_asks_once_and_ends_on_the_models_plots(explorer):
+    # key repeat, 30 ms apart: every press is drawn live, the server asked once at the end
+    explorer.page.add_init_script(RECORD)
+    explorer.open("?sim=0")
+    page = explorer.page
+    slider = page.get_by_label("δ (delta) slider", exact=True)
+    slider.focus()
+    mark = len(recorded(page))
+    for i in range(24):
+        page.keyboard.press("ArrowRight" if i < 16 else "ArrowLeft")
+        page.wait_for_timeout(30)
+    explorer.ready()
+    state = explorer.state()
+    assert state["delta"] != DEFAULTS["delta"]
+    assert float(page.get_by_label("δ (delta)", exact=True).input_value()) == state["delta"]
+    assert_plots_match_model(explorer, state)
+    assert len(frame_changes(page, mark)) >= 12  # at most two presses in one animation frame
+    assert len(sent(page, "explore")) <= 1 + 3  # the first frame, then only where the hand rested
+
+
+def test_a_pointer_drag_is_drawn_live_and_asks_the_server_once_released(explorer):
+    explorer.page.add_init_script(RECORD)
+    explorer.open("?sim=0")
+    page = explorer.page
+    box = page.get_by_label("k [N/s] slider", exact=True).bounding_box()
+    y = box["y"] + box["height"] / 2
+    start = page.evaluate("(() => { const r = document.getElementById('k-range');"
+                          " return (r.value - r.min) / (r.max - r.min); })()")
+    x = box["x"] + 8 + start * (box["width"] - 16)  # the thumb's centre
+    mark = len(recorded(page))
+    requests = len(sent(page, "explore"))
+    page.mouse.move(x, y)
+    page.mouse.down()
+    for step in range(1, 31):
+        page.mouse.move(x + step * 4, y)
+        page.wait_for_timeout(16)
+    during = frame_changes(page, mark)
+    assert len(during) >= 10
+    assert all(r["explore"] == requests and r["ready"] == "false" for r in during)
+    page.mouse.up()
+    explorer.ready()
+    asked = sent(page, "explore")[requests:]
+    assert len(asked) == 1 and asked[0]["k"] == explorer.state()["k"] > DEFAULTS["k"]
+    assert_plots_match_model(explorer)
+    assert_settled_without_canvas(page)
+
+
+def test_the_live_frame_keeps_a_zoom_and_a_hidden_trace(explorer):
+    explorer.open("?sim=0")
+    page = explorer.page
+    page.evaluate("Plotly.relayout('plot-stribeck', {'xaxis.range': [-0.5, 0.5]})")
+    page.locator("#plot-hysteresis .legendtoggle").first.click()
+    until(page, "document.getElementById('plot-hysteresis').data[0].visible === 'legendonly'")
+    slider = page.get_by_label("Fs [N] slider", exact=True)
+    slider.focus()
+    frames = explorer.frames()
+    slider.press("ArrowRight")
+    until(page, f"window.breakaway.frames() > {frames}")
+    ranges = json.loads(page.locator("#plot-stribeck canvas.live-layer").get_attribute("data-ranges"))
+    assert ranges["x"] == [-0.5, 0.5]
+    explorer.ready()
+    assert page.evaluate("document.getElementById('plot-stribeck').layout.xaxis.range") == [-0.5, 0.5]
+    assert page.evaluate("document.getElementById('plot-hysteresis').data[0].visible") == "legendonly"
+    assert_plots_match_model(explorer, explorer.state())
+
+
+#: Plotly's own range and tick labels of each axis of each plot, and the live drawing's
+#: for the same figure.
+AXES = """async () => {
+  const { liveAxes } = await import('/js/livedraw.js');
+  const out = [];
+  for (const gd of document.querySelectorAll('#plots .js-plotly-plot')) {
+    const mine = liveAxes(gd, {data: gd.data, layout: gd.layout});
+    for (const [key, axis] of Object.entries(gd._fullLayout)) {
+      if (!/^[xy]axis\\d*$/.test(key)) continue;
+      const id = key[0] + key.slice(5);
+      const [lo, hi] = [Math.min(...mine[id].range), Math.max(...mine[id].range)];
+      out.push({plot: gd.id, axis: id, plotly: axis.range, live: mine[id].range,
+        plotlyTicks: axis._vals.map((v) => v.text),
+        liveTicks: mine[id].ticks.filter(([v]) => v >= lo - 1e-9 && v <= hi + 1e-9).map(([, t]) => t)});
+    }
+  }
+  return out;
+}"""
+
+
+@pytest.mark.parametrize("viewport,query", [
+    ((1280, 800), "?sim=1"),
+    ((1920, 1080), "?sim=1&present=1&F_hat=self&k=17"),
+    ((390, 844), "?sim=0&Fc=12&Fs=15&V=0.002&delta=0.7&s=200000&sigma=40&k=3&F_hat=Fc"),
+    ((1280, 800), "?sim=0&V=30000&k=25&delta=-1&F_hat=self&Fs=300&Fc=2"),
+])
+def test_the_live_frame_has_plotlys_ranges_and_ticks(explorer, viewport, query):
+    explorer.page.set_viewport_size({"width": viewport[0], "height": viewport[1]})
+    explorer.open(query)
+    explorer.sim_ready()
+    explorer.page.evaluate("window.breakaway.rampReady()")
+    axes = explorer.page.evaluate(AXES)
+    assert len(axes) == 11  # two axes on each plot, three on the ramp's
+    for axis in axes:
+        span = abs(axis["plotly"][1] - axis["plotly"][0])
+        assert all(abs(a - b) <= 1e-9 * span for a, b in zip(axis["live"], axis["plotly"])), axis
+        assert axis["liveTicks"] == axis["plotlyTicks"], axis
+
+
+def test_a_step_of_the_mass_draws_the_ramp_live_from_the_answer_asked_ahead(explorer):
+    explorer.page.add_init_script(RECORD)
+    explorer.open("?sim=0")
+    page = explorer.page
+    slider = page.get_by_label("m [kg] slider", exact=True)
+    slider.focus()
+    slider.press("ArrowRight")
+    explorer.page.evaluate("window.breakaway.rampReady()")
+    first = explorer.state()["m"]
+    # the answers one press away on either side were asked for with that press
+    asked = [body["m"] for body in sent(page, "ramp")]
+    assert first in asked and len({m for m in asked if m > first}) == 1
+    ahead = next(m for m in asked if m > first)
+    mark = len(recorded(page))
+    count = len(asked)
+    slider.press("ArrowRight")
+    until(page, f"window.__frames.slice({mark}).some((r) => r.what === 'data-ramp-frame')")
+    ramp = next(r for r in recorded(page)[mark:] if r["what"] == "data-ramp-frame")
+    # drawn live, before the settle, from the answer that was already here
+    assert ramp["ready"] == "false"
+    assert explorer.state()["m"] == ahead
+    assert page.evaluate("window.breakaway.viewParams('ramp').m") == ahead
+    assert [body["m"] for body in sent(page, "ramp")[count:]].count(ahead) == 0
+    page.evaluate("window.breakaway.rampReady()")
+    assert sent(page, "explore") == [sent(page, "explore")[0]]  # m asks for no frame
