@@ -4,12 +4,6 @@
 
 import { element } from "./fitview.js";
 
-/** Effects of the library per data kind (MODEL.md §7), for the quiz's choices. */
-const LIBRARY = {
-  timeseries: ["viscous", "asymmetry", "offset", "drift", "inertia", "ripple", "lag", "backlash"],
-  steady: ["viscous", "asymmetry", "offset"],
-  breakaway: ["viscous", "asymmetry", "inertia", "dwell", "detection"],
-};
 const $ = (id) => document.getElementById(id);
 
 let unrevealed = null; // the report of a quiz not yet answered
@@ -36,7 +30,9 @@ export function startQuiz(report) {
   unrevealed = report;
   const select = $("quiz-guess");
   select.replaceChildren(element("option", { value: "", text: "(choose)" }),
-    ...LIBRARY[report.kind].map((e) => element("option", { value: e, text: e })),
+    // the library's effects for this kind, as the engine's registry lists them: the
+    // report names every one in its candidates (MODEL.md §8)
+    ...Object.keys(report.candidates ?? {}).map((e) => element("option", { value: e, text: e })),
     element("option", { value: "none", text: "nothing: the base model explains it" }),
     element("option", { value: "outside", text: "something the library does not have" }));
   $("quiz-reveal").disabled = true;

@@ -298,6 +298,11 @@ def test_a_sample_loads_and_fits(explorer):
     assert set(residual) == {"before (base model)"}
     reveal = page.get_by_role("button", name="Reveal the diagnosis")
     assert reveal.is_disabled()
+    # the choices are the engine's library for the kind, viscous-power included
+    guesses = page.get_by_label("Your guess", exact=True).locator("option")
+    offered = [o for o in guesses.evaluate_all("els => els.map(e => e.value)") if o]
+    assert offered == [*report["candidates"], "none", "outside"]
+    assert "viscous-power" in offered
     page.get_by_label("Your guess", exact=True).select_option("backlash")
     reveal.click()
     assert page.locator("#quiz-result").inner_text() == "Not this time: the data hold ripple."
@@ -352,11 +357,12 @@ def test_downloads_report_and_residuals(explorer):
 
 def test_panel_shows_warnings_undetermined_parameters_verdicts_and_structure(explorer):
     rng = np.random.default_rng(5)
-    # steady friction with a quadratic drag: outside the library
+    # steady friction with a hump around one speed: outside the library
     speeds = np.geomspace(1e-4, 0.3, 80)
     v = np.concatenate([-speeds[::-1], speeds])
     g = 10 + 5 * np.exp(-(np.abs(v) / 0.005) ** 1.5)
-    F = np.sign(v) * g + 60 * v * np.abs(v) + 0.05 * rng.standard_normal(v.size)
+    hump = 2.0 * np.exp(-((np.log(np.abs(v)) - np.log(0.03)) / 0.4) ** 2)
+    F = np.sign(v) * (g + hump) + 0.05 * rng.standard_normal(v.size)
     text = "v,F\n" + "".join(f"{a:.10g},{b:.10g}\n" for a, b in zip(v, F))
     report = engine_report(text)
     explorer.open("?sim=0")
@@ -367,6 +373,7 @@ def test_panel_shows_warnings_undetermined_parameters_verdicts_and_structure(exp
     row = page.locator(f'#fit-structure tr[data-against="{top["against"]}"]')
     assert row.locator("td").inner_text() == f"{round(100 * top['strength'])} %"
     page.locator("#fit-candidates-box summary").click()
+    assert "viscous-power" in report["candidates"]
     for effect, verdict in report["candidates"].items():
         shown = page.locator(f'#fit-candidates tr[data-effect="{effect}"] td.verdict').inner_text()
         assert shown == ("accepted" if verdict["accepted"] else f"not accepted: {verdict['reason']}")
