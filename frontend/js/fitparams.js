@@ -31,6 +31,11 @@ export function explorerParams(report, specs = PARAMS) {
   }
   values.sigma = report.effects.includes("viscous") && Number.isFinite(fitted.sigma)
     ? roundSignificant(fitted.sigma, DIGITS) : 0;
+  if (report.effects.includes("viscous-power")) {
+    // the explorer's σ is the linear σ·v of E2; a curve σ·|v|ⁿ has no slider
+    notes.push(`the fitted curve σ·|v|^n (σ = ${roundSignificant(fitted.sigma, DIGITS)}, ` +
+      `n = ${roundSignificant(fitted.n, DIGITS)}) has no slider here: σ stays 0`);
+  }
   if (values.Fs < values.Fc) values.Fs = values.Fc; // rounding never does this; be safe
   // sliders reach the data's scale (kN for a damper): a range is widened by decades
   const ranges = {};
@@ -47,7 +52,8 @@ export function explorerParams(report, specs = PARAMS) {
     }
   }
   if (widened.length) notes.push(`slider ranges widened to the data's scale: ${widened.join(", ")}`);
-  const others = Object.keys(fitted).filter((name) => !specs.some((spec) => spec.name === name));
+  const others = Object.keys(fitted).filter((name) => name !== "n"
+    && !specs.some((spec) => spec.name === name));
   if (others.length) notes.push(`the explorer has no control for ${others.join(", ")}`);
   return { values, notes, ranges };
 }

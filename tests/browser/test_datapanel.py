@@ -425,3 +425,20 @@ def test_rotary_data_are_labelled_in_newton_metres(explorer):
     xtitle = page.evaluate("document.getElementById('fit-plot-model').layout.xaxis.title.text")
     assert xtitle == "k [N·m/s]"
     assert "fit RMSE [N·m]" in page.locator("#fit-error-table").inner_text()
+
+
+def test_a_fitted_curve_sigma_v_to_the_n_is_named_and_not_put_on_the_linear_slider(explorer):
+    text = synthetic_csv("steady", ("viscous-power",), seed=11)
+    report = engine_report(text)
+    assert report["effects"] == ["viscous-power"]
+    explorer.open("?sim=0")
+    page = explorer.page
+    upload(explorer, text)
+    assert wait_for(explorer, "done", "error") == "done"
+    assert shown_effects(explorer) == ["viscous-power"]
+    page.get_by_role("button", name="Use these parameters", exact=True).click()
+    explorer.ready()
+    note = page.locator("#use-note").inner_text()
+    n = report["final"]["params"]["n"]
+    assert "σ·|v|^n" in note and f"n = {float(f'{n:.6g}'):g}" in note
+    assert float(page.get_by_label("σ (sigma) [N·s/m]", exact=True).input_value()) == 0
