@@ -81,40 +81,51 @@ MIN_POSITION_HALF_WINDOW = 2
 
 
 @njit(cache=True)
+def _quadratic_at(t, x, i, lo, hi):
+    """Coefficients (c0, c1, c2) of the least-squares x ≈ c0 + c1·u + c2·u², u = t − t_i,
+    over samples lo … hi − 1 (Cramer's rule on the 3 × 3 normal equations); x_i and
+    zeros when they are singular."""
+    s0 = s1 = s2 = s3 = s4 = 0.0
+    b0 = b1 = b2 = 0.0
+    for j in range(lo, hi):
+        u = t[j] - t[i]
+        u2 = u * u
+        s0 += 1.0
+        s1 += u
+        s2 += u2
+        s3 += u2 * u
+        s4 += u2 * u2
+        b0 += x[j]
+        b1 += u * x[j]
+        b2 += u2 * x[j]
+    det = s0 * (s2 * s4 - s3 * s3) - s1 * (s1 * s4 - s3 * s2) + s2 * (s1 * s3 - s2 * s2)
+    if det == 0.0:
+        return x[i], 0.0, 0.0
+    c0 = (b0 * (s2 * s4 - s3 * s3) - s1 * (b1 * s4 - s3 * b2) + s2 * (b1 * s3 - s2 * b2)) / det
+    c1 = (s0 * (b1 * s4 - s3 * b2) - b0 * (s1 * s4 - s3 * s2) + s2 * (s1 * b2 - b1 * s2)) / det
+    c2 = (s0 * (s2 * b2 - b1 * s3) - s1 * (s1 * b2 - b1 * s2) + b0 * (s1 * s3 - s2 * s2)) / det
+    return c0, c1, c2
+
+
+@njit(cache=True)
 def _adaptive_position(t, x, span, min_half, max_half):
     n = x.size
     p = np.empty(n)
     for i in range(n):
         w = min_half
-        while True:
+        lo = max(i - w, 0)
+        hi = min(i + w, n - 1)
+        low = high = x[i]
+        for j in range(lo, hi + 1):
+            low = min(low, x[j])
+            high = max(high, x[j])
+        while high - low < span and w < max_half and (lo > 0 or hi < n - 1):
+            w += 1
             lo = max(i - w, 0)
             hi = min(i + w, n - 1)
-            low = high = x[lo]
-            for j in range(lo, hi + 1):
-                low = min(low, x[j])
-                high = max(high, x[j])
-            if high - low >= span or w >= max_half or (lo == 0 and hi == n - 1):
-                break
-            w += 1
-        s0 = s1 = s2 = s3 = s4 = 0.0
-        b0 = b1 = b2 = 0.0
-        for j in range(lo, hi + 1):
-            u = t[j] - t[i]
-            u2 = u * u
-            s0 += 1.0
-            s1 += u
-            s2 += u2
-            s3 += u2 * u
-            s4 += u2 * u2
-            b0 += x[j]
-            b1 += u * x[j]
-            b2 += u2 * x[j]
-        det = s0 * (s2 * s4 - s3 * s3) - s1 * (s1 * s4 - s3 * s2) + s2 * (s1 * s3 - s2 * s2)
-        if det == 0.0:
-            p[i] = x[i]
-        else:
-            p[i] = (b0 * (s2 * s4 - s3 * s3) - s1 * (b1 * s4 - s3 * b2)
-                    + s2 * (b1 * s3 - s2 * b2)) / det
+            low = min(low, x[lo], x[hi])
+            high = max(high, x[lo], x[hi])
+        p[i] = _quadratic_at(t, x, i, lo, hi + 1)[0]
     return p
 
 
@@ -213,31 +224,7 @@ def _local_quadratic(t, x, half):
     for i in range(n):
         lo = min(max(i - half, 0), max(n - 2 * half - 1, 0))
         hi = min(lo + 2 * half + 1, n)
-        s0 = s1 = s2 = s3 = s4 = 0.0
-        b0 = b1 = b2 = 0.0
-        for j in range(lo, hi):
-            u = t[j] - t[i]
-            u2 = u * u
-            s0 += 1.0
-            s1 += u
-            s2 += u2
-            s3 += u2 * u
-            s4 += u2 * u2
-            b0 += x[j]
-            b1 += u * x[j]
-            b2 += u2 * x[j]
-        # normal equations of x ≈ c0 + c1·u + c2·u² (Cramer's rule, 3 × 3)
-        det = s0 * (s2 * s4 - s3 * s3) - s1 * (s1 * s4 - s3 * s2) + s2 * (s1 * s3 - s2 * s2)
-        if det == 0.0:
-            p[i] = x[i]
-            v[i] = 0.0
-            a[i] = 0.0
-            continue
-        c0 = (b0 * (s2 * s4 - s3 * s3) - s1 * (b1 * s4 - s3 * b2) + s2 * (b1 * s3 - s2 * b2)) / det
-        c1 = (s0 * (b1 * s4 - s3 * b2) - b0 * (s1 * s4 - s3 * s2) + s2 * (s1 * b2 - b1 * s2)) / det
-        c2 = (s0 * (s2 * b2 - b1 * s3) - s1 * (s1 * b2 - b1 * s2) + b0 * (s1 * s3 - s2 * s2)) / det
-        p[i] = c0
-        v[i] = c1
+        p[i], v[i], c2 = _quadratic_at(t, x, i, lo, hi)
         a[i] = 2.0 * c2
     return p, v, a
 
