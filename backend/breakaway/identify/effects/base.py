@@ -9,7 +9,7 @@ from typing import Callable
 
 import numpy as np
 
-from ..csvdata import _ROTARY_UNIT
+from ..csvdata.dataset import _ROTARY_UNIT
 
 #: The break-away kind's fixed reading of E13 (MODEL.md §6): F̂ = avg at z* = 0.95.
 BREAKAWAY_Z = 0.95
