@@ -21,10 +21,10 @@ import textwrap
 
 CHILD = textwrap.dedent("""
     import json, resource, sys, time
-    from breakaway.identify import diagnosis, diagnose, read_csv, report
+    from breakaway.identify import diagnose, read_csv, report, screening
     path, screen = sys.argv[1], sys.argv[2] == "screen"
     if not screen:
-        diagnosis.SCREEN_ROWS = 10**12
+        screening.SCREEN_ROWS = 10**12
     t0 = time.perf_counter()
     data = read_csv(path, max_bytes=None)
     parsed = time.perf_counter() - t0

@@ -146,3 +146,57 @@ def test_dask_without_distributed_says_how_to_install(monkeypatch, tmp_path):
     monkeypatch.setattr(builtins, "__import__", no_dask)
     with pytest.raises(SystemExit, match=r"pip install 'breakaway\[dask\]'"):
         main(["fit", str(tmp_path / "a.csv"), "--dask", "tcp://127.0.0.1:1"])
+
+
+# ---------------------------------------------------------------------------------
+# breakaway export
+# ---------------------------------------------------------------------------------
+
+
+@pytest.fixture
+def report_file(tmp_path):
+    """A report of `breakaway fit --json` on a seeded steady file."""
+    data, _ = make_dataset("steady", ("viscous",), seed=3)
+    csv = tmp_path / "steady.csv"
+    csv.write_text(to_csv(data))
+    run = subprocess.run([sys.executable, "-m", "breakaway", "fit", str(csv), "--json"],
+                         capture_output=True, text=True, check=True)
+    path = tmp_path / "report.json"
+    path.write_text(run.stdout)
+    return path
+
+
+def test_export_writes_the_module_a_steady_report_allows(report_file, tmp_path, capsys):
+    out = tmp_path / "model.py"
+    assert main(["export", str(report_file), "--lang", "python", "--s", "1000",
+                 "-o", str(out)]) == 0
+    namespace = {}
+    exec(compile(out.read_text(), str(out), "exec"), namespace)
+    sigma = json.loads(report_file.read_text())["final"]["params"]["sigma"]
+    assert namespace["SIGMA"] == sigma and namespace["S"] == 1000.0
+    assert namespace["steady"](0.0) == 0.0
+    assert main(["export", str(report_file), "--lang", "json", "--s", "1000"]) == 0
+    assert json.loads(capsys.readouterr().out)["params"]["sigma"] == sigma
+
+
+@pytest.mark.parametrize("content,message", [
+    (None, "cannot read: No such file or directory"),
+    ("{not json", "not a JSON report"),
+    ('{"effects": []}', "report has no final.params"),
+])
+def test_export_of_a_bad_report_exits_2_with_one_line(tmp_path, content, message):
+    path = tmp_path / "report.json"
+    if content is not None:
+        path.write_text(content)
+    run = subprocess.run([sys.executable, "-m", "breakaway", "export", str(path), "--lang", "c"],
+                         capture_output=True, text=True)
+    assert run.returncode == 2 and run.stdout == ""
+    assert run.stderr.count("\n") == 1 and message in run.stderr
+    assert "Traceback" not in run.stderr
+
+
+def test_export_names_the_missing_scale_of_a_steady_report(report_file):
+    run = subprocess.run([sys.executable, "-m", "breakaway", "export", str(report_file),
+                          "--lang", "c"], capture_output=True, text=True)
+    assert run.returncode == 2
+    assert "has no presliding scale s" in run.stderr and "--s" in run.stderr

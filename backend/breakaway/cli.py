@@ -1,4 +1,5 @@
-"""Command line: ``breakaway serve`` and ``breakaway fit`` (MODEL.md §9)."""
+"""Command line: ``breakaway serve``, ``breakaway fit`` and ``breakaway export``
+(MODEL.md §9)."""
 
 from __future__ import annotations
 
@@ -40,6 +41,40 @@ def _fit(args: argparse.Namespace) -> int:
         print(json.dumps(result, indent=2))
     else:
         print(format_report(result, source=path), end="")
+    return 0
+
+
+def _export(args: argparse.Namespace) -> int:
+    """The fitted model of a report as a Python module, a C file or JSON; a bad report
+    is one line on stderr and exit code 2."""
+    import json
+
+    from .export import ReportError, export_model
+
+    try:
+        with open(args.report, encoding="utf-8") as fh:
+            report = json.load(fh)
+    except OSError as err:
+        print(f"breakaway export: {args.report}: cannot read: {err.strerror}", file=sys.stderr)
+        return 2
+    except (json.JSONDecodeError, UnicodeDecodeError) as err:
+        print(f"breakaway export: {args.report}: not a JSON report: {err}", file=sys.stderr)
+        return 2
+    try:
+        text = export_model(report, args.lang, s=args.s, t_0=args.t0)
+    except ReportError as err:
+        print(f"breakaway export: {args.report}: {err}", file=sys.stderr)
+        return 2
+    if args.output:
+        try:
+            with open(args.output, "w", encoding="utf-8") as fh:
+                fh.write(text)
+        except OSError as err:
+            print(f"breakaway export: {args.output}: cannot write: {err.strerror}",
+                  file=sys.stderr)
+            return 2
+    else:
+        sys.stdout.write(text)
     return 0
 
 
@@ -178,6 +213,20 @@ def build_parser() -> argparse.ArgumentParser:
                      help="data kind (default: from a '# kind:' line or the columns)")
     fit.add_argument("--json", action="store_true", help="print the JSON report (MODEL.md §8)")
     fit.set_defaults(handler=_fit)
+    export = commands.add_parser(
+        "export", help="the fitted model of a report as standalone Python, C99 or JSON")
+    export.add_argument("report", metavar="REPORT.json",
+                        help="a report of breakaway fit FILE --json (MODEL.md §8)")
+    export.add_argument("--lang", choices=("python", "c", "json"), required=True,
+                        help="python: steady(v), class Presliding with step(x, t); c: "
+                             "bk_steady, bk_state, bk_init, bk_step; json: the parameters")
+    export.add_argument("-o", "--output", metavar="FILE", default=None,
+                        help="write to FILE (default: standard output)")
+    export.add_argument("--s", type=float, default=None,
+                        help="presliding scale [1/m] where the report has none (a steady fit)")
+    export.add_argument("--t0", type=float, default=None,
+                        help="the time [s] a drift refers to, where the report has no t_0")
+    export.set_defaults(handler=_export)
     return parser
 
 

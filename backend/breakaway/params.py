@@ -48,6 +48,59 @@ LUGRE_1995: dict[str, float] = {
     "m": 1.0,  # [kg]
 }
 
+#: The position loop of MODEL.md §5b (the loop view and ``POST /api/loop``): the mass,
+#: controller and references per friction model, on the model's own parameters
+#: (:data:`DEFAULTS` for ``presliding``, normalised units with s = 1; :data:`LUGRE_1995`
+#: for ``lugre``, SI). Chosen so that a step hunts within a 5-s run:
+#:
+#: - presliding: m = 1e-5 kg; Kp = 0.03 N/m, Ki = 3 N/(m·s), Kd = 0.003 N·s/m, a step of
+#:   h = 10 presliding distances. The linear loop is stable (Kd·Kp > m·Ki) and
+#:   overdamped, so every oscillation is friction's: with Fs = 1.5 Fc it settles into a
+#:   stick-slip cycle of ±1.8 around the target with a break-away every 0.65 s (in
+#:   alternating directions); with Fs = Fc it settles within 0.003. Kd sits below the
+#:   Stribeck curve's steepest fall (Fs − Fc)/V = 0.005 N·s/m, so sliding is unstable:
+#:   from Kd = 0.004 on the loop settles, and exact friction compensation from ṙ cuts a
+#:   sine's RMS error from 2.5 to 0.4 at Kd = 0.01 (at Kd = 0.003 it raises it from 2.3
+#:   to 5.9: the body sticks and slips instead of following ṙ).
+#: - lugre: Kp = 2500 N/m, Ki = 1e5 N/(m·s), Kd = 100 N·s/m and a 1-mm step on the 1995
+#:   parameters (m = 1 kg): hunting of ±0.09 mm with a break-away every 0.4 s; with
+#:   Fs = Fc it settles.
+#:
+#: ``u_max`` None is no force limit; ``scale`` is the compensation's c (0: off).
+LOOP_DEFAULTS: dict[str, dict[str, float | str | None]] = {
+    "presliding": {
+        "m": 1e-5,  # moving mass [kg]
+        "Kp": 0.03,  # proportional gain [N/m]
+        "Ki": 3.0,  # integral gain [N/(m s)]
+        "Kd": 0.003,  # derivative gain on ṙ − ẋ [N s/m]
+        "u_max": None,  # force limit [N]
+        "h": 10.0,  # step height, sine amplitude [m]
+        "w": 5.0,  # ramp speed [m/s]
+        "f": 0.5,  # sine frequency [Hz]
+    },
+    "lugre": {
+        "m": LUGRE_1995["m"],
+        "Kp": 2500.0,
+        "Ki": 1e5,
+        "Kd": 100.0,
+        "u_max": None,
+        "h": 1e-3,
+        "w": 5e-4,
+        "f": 0.5,
+    },
+}
+#: What the loop's models share: the reference kind, the run's length [s] and output
+#: samples, the compensation scale c, F̂ of the phases' E13 values and z* (LuGre: the
+#: fraction of its steady deflection that the bristle reaches at break-away).
+LOOP_COMMON: dict[str, float | str] = {
+    "kind": "step",
+    "duration": 5.0,
+    "points": 2000,
+    "scale": 0.0,
+    "F_hat": "avg",
+    "z_ba": 0.95,
+}
+
 #: The Fig. 3 rate grid of the note: k = 0.01, 2.01, ..., 28.01 [N/s].
 FIG3_RATES: tuple[float, ...] = tuple(0.01 + 2.0 * i for i in range(15))
 

@@ -32,6 +32,9 @@ class Settings(BaseSettings):
     #: explorer: its wall-clock budget per request [s] and step budget per rate.
     simulate_timeout_s: float = 20.0
     simulate_max_steps: int = 1_000_000
+    #: Longest simulated time of a /api/loop run [s] (its output grid is capped by
+    #: max_grid_points).
+    loop_max_duration: float = 60.0
     #: Simulation requests that may wait for the worker; more are answered 503 at once.
     simulate_queue: int = 16
     #: Where the server keeps its state: the fit jobs' SQLite store (``jobs.sqlite``);

@@ -135,11 +135,24 @@ def strengthening_steady(seed=0):
 
 
 def quadratic_drag(seed=0):
-    """Steady friction with a quadratic drag c·v·|v|: outside the library."""
+    """Steady friction with a quadratic drag c·v·|v|: ``viscous-power`` with n = 2."""
     rng = np.random.default_rng(seed)
     speeds = np.geomspace(1e-4, 0.3, 80)
     v = np.concatenate([-speeds[::-1], speeds])
     p = BASE_TRUTH["steady"]
     g = p["Fc"] + (p["Fs"] - p["Fc"]) * np.exp(-(np.abs(v) / p["V"]) ** p["delta"])
     F = np.sign(v) * g + 60.0 * v * np.abs(v) + 0.05 * rng.standard_normal(v.size)
+    return dataset("steady", {"v": v, "F": F}), {"sigma": 60.0, "n": 2.0}
+
+
+def speed_hump(seed=0):
+    """Steady friction with a hump around one speed (a resonance of the drive, say):
+    outside the library, which has nothing that rises and falls again with speed."""
+    rng = np.random.default_rng(seed)
+    speeds = np.geomspace(1e-4, 0.3, 80)
+    v = np.concatenate([-speeds[::-1], speeds])
+    p = BASE_TRUTH["steady"]
+    g = p["Fc"] + (p["Fs"] - p["Fc"]) * np.exp(-(np.abs(v) / p["V"]) ** p["delta"])
+    hump = 2.0 * np.exp(-((np.log(np.abs(v)) - np.log(0.03)) / 0.4) ** 2)
+    F = np.sign(v) * (g + hump) + 0.05 * rng.standard_normal(v.size)
     return dataset("steady", {"v": v, "F": F}), {}

@@ -30,7 +30,7 @@ def _report(kind, effects=(), seed=0, **kwargs):
 
 
 def test_every_effect_and_kind_is_covered():
-    assert len(SINGLE) == 16
+    assert len(SINGLE) == 18
     assert {e for _, e in SINGLE} == set(EFFECTS)
 
 

@@ -23,7 +23,7 @@ def _available(data):
 
 def test_library_names_and_keys_follow_the_contract():
     assert {name: e.keys for name, e in EFFECTS.items()} == {
-        "viscous": ("sigma",), "asymmetry": ("Fc_neg", "Fs_neg"), "offset": ("F_offset",),
+        "viscous": ("sigma",), "viscous-power": ("sigma", "n"), "asymmetry": ("Fc_neg", "Fs_neg"), "offset": ("F_offset",),
         "drift": ("alpha",), "inertia": ("m_e",), "ripple": ("A", "wavelength", "phase"),
         "lag": ("tau",), "backlash": ("play",), "dwell": ("zeta", "tau_d"),
         "detection": ("tau_det",)}
@@ -33,13 +33,13 @@ def test_every_parameter_has_a_unit_and_bounds_and_every_effect_a_regressor():
     for effect in EFFECTS.values():
         assert set(effect.regressor) == set(effect.kinds)
         for p in effect.params:
-            assert param_spec(p.name) is p
+            assert param_spec(p.name, (effect.name,)) is p
 
 
 @pytest.mark.parametrize("kind,expected", [
-    ("timeseries", ["viscous", "asymmetry", "offset", "drift", "inertia", "ripple", "lag",
+    ("timeseries", ["viscous", "viscous-power", "asymmetry", "offset", "drift", "inertia", "ripple", "lag",
                     "backlash"]),
-    ("steady", ["viscous", "asymmetry", "offset"]),
+    ("steady", ["viscous", "viscous-power", "asymmetry", "offset"]),
     ("breakaway", ["viscous", "asymmetry", "inertia", "dwell", "detection"]),
 ])
 def test_available_per_kind(kind, expected):

@@ -157,7 +157,8 @@ def test_friction_rising_at_low_speed_is_flagged(reports):
     # optimiser's path and the library versions (numpy 2.4 + scipy 1.17 end on V, earlier
     # installs ended on Fs): both are honest.
     report, _ = reports("strengthening_steady")
-    flagged = {w["parameter"] for w in report["warnings"] if w["code"] == "at-bound"}
+    flagged = {w["parameter"] for w in report["warnings"]
+               if w["code"] in ("at-bound", "beyond-data")}
     assert flagged & {"Fc", "Fs", "V"}
     for name in flagged:
         assert report["final"]["determined"][name] is False
@@ -166,10 +167,21 @@ def test_friction_rising_at_low_speed_is_flagged(reports):
 
 
 def test_an_effect_outside_the_library_is_traced_to_its_variable(reports):
-    report, _ = reports("quadratic_drag")
+    report, _ = reports("speed_hump")
     assert report["unexplained"] is True
     top = report["residual_structure"][0]
     assert top["against"] == "v" and top["strength"] >= 0.2
+
+
+def test_quadratic_drag_is_viscous_power_with_n_2(reports):
+    report, truth = reports("quadratic_drag")
+    assert report["effects"] == ["viscous-power"]
+    final = report["final"]
+    assert final["params"]["n"] == pytest.approx(truth["n"], abs=0.1)
+    assert final["params"]["sigma"] == pytest.approx(truth["sigma"], rel=0.1)
+    assert final["determined"]["n"] and final["determined"]["Fc"]
+    assert report["candidates"]["viscous"]["accepted"] is False
+    assert "viscous-power describes the data better" in report["candidates"]["viscous"]["reason"]
 
 
 def test_white_residual_has_no_structure(reports):

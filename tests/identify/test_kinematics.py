@@ -5,7 +5,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from breakaway.identify.kinematics import direction, position_noise, quantum, velocity
+from breakaway.identify.derivatives import velocity
+from breakaway.identify.kinematics import direction, position_noise, printed_unit, quantum
 from breakaway.identify.synthetic import displacement_excitation
 from breakaway.presliding import motion_direction
 
@@ -27,6 +28,28 @@ def test_exact_positions_follow_model_md_section_3(strokes):
 def test_an_encoder_step_is_found(strokes, count):
     _, x = strokes
     assert quantum(np.round(x / count) * count) == pytest.approx(count, rel=1e-6)
+
+
+@pytest.mark.parametrize("decimals", [3, 4, 5])
+def test_counts_converted_to_degrees_and_printed_are_still_a_step(decimals):
+    # a 4096-count encoder logged in degrees: the gaps are q ± the printed rounding
+    count = 360 / 4096
+    rng = np.random.default_rng(decimals)
+    counts = np.cumsum(rng.integers(-1, 3, 4000))
+    printed = np.round(counts * count, decimals)
+    assert printed_unit(printed) == pytest.approx(10.0 ** -decimals)
+    assert quantum(printed) == pytest.approx(count, rel=1e-4)
+
+
+def test_printed_unit_and_a_continuous_column():
+    rng = np.random.default_rng(2)
+    walk = np.cumsum(rng.standard_normal(5000)) * 1e-3
+    assert printed_unit(walk) == 0.0  # full double precision
+    assert printed_unit(np.round(walk, 6)) == pytest.approx(1e-6)
+    # a continuous column printed with 6 decimals is not a step of 1e-6: its changes
+    # are hundreds of units
+    assert quantum(np.round(walk, 6)) == 0.0
+    assert printed_unit(np.array([1500.0, 2500.0])) == pytest.approx(100.0)
 
 
 def test_jitter_of_one_count_is_no_reversal(strokes):

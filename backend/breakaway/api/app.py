@@ -18,7 +18,8 @@ from .errors import http_error_handler, request_validation_handler
 from .fitworkers import FitWorkers
 from .jobstore import JobStore
 from .middleware import BodySizeLimit, CatchAll, CompressPages, SameOrigin, SecurityHeaders
-from .routers import assets, explore, fit, health, presets, ramp, samples, simulate
+from .routers import (assets, explore, export, fit, health, loop, presets, ramp, samples,
+                      simulate)
 from .simulation import SimulationRunner
 
 #: The API, one router per resource.
@@ -28,7 +29,9 @@ ROUTERS: list[APIRouter] = [
     explore.router,
     simulate.router,
     ramp.router,
+    loop.router,
     fit.router,
+    export.router,
     samples.router,
     assets.router,
 ]

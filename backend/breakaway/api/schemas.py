@@ -7,7 +7,7 @@ field before any model code runs. Requests are strict: numbers must be JSON numb
 
 from __future__ import annotations
 
-from typing import Annotated, Literal
+from typing import Annotated, ClassVar, Literal
 
 from pydantic import (
     AfterValidator,
@@ -141,18 +141,20 @@ class ExploreRequest(_Levels):
         return self.model_dump(exclude={"grid"})
 
 
-class SimulateRequest(_Levels):
-    """Ramp simulation (E7) or LuGre at each rate in ``k``.
+class PlantRequest(_Levels):
+    """The friction model and its parameters, as the simulation requests share them.
 
     Omitted parameters take the model's defaults: ``breakaway.params.DEFAULTS`` for
     ``presliding``, ``breakaway.params.LUGRE_1995`` for ``lugre``. For ``lugre`` the
     request fields override LuGre's as ``Fc → Fc``, ``Fs → Fs``, ``V → vs``,
     ``delta → delta``, ``sigma → sigma2``, ``m → m``, ``sigma0``, ``sigma1``;
-    ``s`` and ``z_ba`` do not exist in LuGre and are rejected.
+    the fields in ``lugre_lacks`` do not exist in LuGre and are rejected.
     """
 
+    #: the presliding parameters LuGre has no use for in this request
+    lugre_lacks: ClassVar[tuple[str, ...]] = ("s", "z_ba")
+
     model: Literal["presliding", "lugre"] = Field("presliding", description="which model")
-    k: Rates = Field(..., description="force rates [N/s], each > 0 (capped in number)")
     V: Positive | None = Field(None, description="Stribeck velocity [m/s] (LuGre: vs)")
     delta: Delta | None = Field(None, description="shape exponent, |δ| ≥ 0.05")
     sigma: NonNegative | None = Field(None, description="viscous coefficient [N·s/m] (LuGre: σ2)")
@@ -172,8 +174,8 @@ class SimulateRequest(_Levels):
         return cap if self.max_steps is None else min(self.max_steps, cap)
 
     @model_validator(mode="after")
-    def _fields_of_the_model(self) -> SimulateRequest:
-        unused = ("sigma0", "sigma1") if self.model == "presliding" else ("s", "z_ba")
+    def _fields_of_the_model(self) -> PlantRequest:
+        unused = ("sigma0", "sigma1") if self.model == "presliding" else self.lugre_lacks
         for name in unused:
             if getattr(self, name) is not None:
                 raise _field_error(name, getattr(self, name),
@@ -198,6 +200,13 @@ class SimulateRequest(_Levels):
         return params
 
 
+class SimulateRequest(PlantRequest):
+    """Ramp simulation (E7) or LuGre at each rate in ``k`` (fields of the model: see
+    :class:`PlantRequest`)."""
+
+    k: Rates = Field(..., description="force rates [N/s], each > 0 (capped in number)")
+
+
 class RampRequest(SimulateRequest):
     """The ramp experiment at one rate (MODEL.md §9 ``/api/ramp``); fields as
     ``/api/simulate`` with a single ``k``, and ``F_hat`` for the E13 value beside it."""
@@ -211,13 +220,15 @@ class RampRequest(SimulateRequest):
         return {**params, "F_hat": self.F_hat or DEFAULTS["F_hat"]}
 
 
-def _field_error(name: str, value: object, message: str):
-    """A pydantic ValidationError located at ``name`` (for checks across fields)."""
+def _field_error(name: str, value: object, message: str, loc: tuple | None = None):
+    """A pydantic ValidationError located at ``name`` (for checks across fields), or at
+    ``loc`` inside a nested object."""
     from pydantic_core import ValidationError
 
     return ValidationError.from_exception_data(
         "SimulateRequest",
-        [{"type": "value_error", "loc": (name,), "input": value, "ctx": {"error": message}}],
+        [{"type": "value_error", "loc": loc or (name,), "input": value,
+          "ctx": {"error": message}}],
     )
 
 

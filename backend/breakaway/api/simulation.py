@@ -67,6 +67,14 @@ def run_ramp(model: str, k: float, params: dict[str, float], max_steps: int) -> 
     return ramp_experiment(model, k, params, max_steps)
 
 
+def run_loop(args: dict[str, Any]) -> dict[str, Any]:
+    """Worker entry point: one run of the position loop (MODEL.md §9 ``/api/loop``),
+    its time series as numpy arrays (sent as float32 JSON by the route)."""
+    from ..loop import loop_experiment
+
+    return loop_experiment(**args)
+
+
 def _nullable(values) -> list[float | None]:
     return [float(v) if v == v and abs(v) != float("inf") else None for v in values]
 
@@ -84,8 +92,18 @@ def _exit_with_parent(parent: int) -> None:
 
 
 def _warm_up() -> bool:
-    """Load the compiled integrator in the worker (numba's disk cache: ~0.3 s)."""
-    run_simulation("presliding", [1.0], {}, 10_000)
+    """Load the compiled integrator and both loop models in the worker (numba's disk
+    cache: ~0.3 s; the first request would otherwise pay it)."""
+    from ..params import DEFAULTS, LOOP_DEFAULTS
+
+    plant = {name: DEFAULTS[name] for name in ("Fc", "Fs", "V", "delta", "sigma", "s", "m")}
+    run_simulation("presliding", [1.0], plant, 10_000)
+    for model, plant in (("presliding", plant), ("lugre", {})):
+        gains = {name: LOOP_DEFAULTS[model][name] for name in ("Kp", "Ki", "Kd", "u_max")}
+        run_loop({"model": model, "params": {**plant, "z_ba": 0.95}, "controller": gains,
+                  "reference": {"kind": "sine", "h": LOOP_DEFAULTS[model]["h"], "f": 1.0},
+                  "duration": 0.01, "compensation": {"scale": 1.0}, "points": 10,
+                  "max_steps": 10_000})
     return True
 
 

@@ -27,3 +27,10 @@ def _dg_dabs(v, Fc, Fs, V, delta):
     return -(Fs - Fc) * delta * r / av * math.exp(-r)
 
 
+
+
+#: Event codes a model's ``jump`` returns (a bit mask): a change of sign of ẋ (a new
+#: presliding branch), a break-away (the presliding fraction reaches z*), the start of
+#: a stick phase (the first reversal after a break-away), and a change of sign of the
+#: reference velocity ṙ (the friction compensation switches branch).
+EVENT_REVERSAL, EVENT_BREAKAWAY, EVENT_STICK, EVENT_COMPENSATION = 1, 2, 4, 8

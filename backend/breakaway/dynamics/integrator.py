@@ -1,67 +1,25 @@
 """The one integrator of the dynamic models: an adaptive Dormand–Prince 5(4) scheme
 compiled with numba, with event location on each step's Hermite interpolant, exact
-restarts at reversals, and a sweep over rates (see :mod:`breakaway.dynamics`).
+restarts at reversals, and a sweep over rates (see :mod:`breakaway.dynamics`; the
+Python side of a run is :mod:`.runs`).
 
-The models are selected by id inside compiled code (a small model table) because numba
+The models are selected by id inside compiled code (:mod:`.table`) because numba
 cannot cache functions that receive jitted functions as arguments.
+
+A run records either every accepted step and event (the ramp), or a uniform output
+grid, interpolated on each step's Hermite cubic, plus the events a mask selects (the
+loop: a plot needs a few thousand samples, not every step through a chattering stick).
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 from numba import njit
 
-from ..params import check_positive
-from .lugre import _L_K, _lugre_force, _lugre_guard, _lugre_jump, _lugre_rhs, _lugre_stop
-from .ramp_model import (_P_K, _presliding_force, _presliding_guard, _presliding_jump,
-                         _presliding_rhs, _presliding_stop)
-
-# ---------------------------------------------------------------------------------
-# the model table: one signature, dispatched on the model id inside compiled code
-# (jitted functions passed as arguments cannot be cached on disk by numba)
-# ---------------------------------------------------------------------------------
-MODEL_PRESLIDING, MODEL_LUGRE = 0, 1
-
-
-@njit(cache=True)
-def _rhs(model, t, y, p, mem, dy):
-    if model == MODEL_PRESLIDING:
-        _presliding_rhs(t, y, p, mem, dy)
-    else:
-        _lugre_rhs(t, y, p, mem, dy)
-
-
-@njit(cache=True)
-def _force(model, t, y, p, mem):
-    if model == MODEL_PRESLIDING:
-        return _presliding_force(t, y, p, mem)
-    return _lugre_force(t, y, p, mem)
-
-
-@njit(cache=True)
-def _guard(model, t, y, p, mem):
-    if model == MODEL_PRESLIDING:
-        return _presliding_guard(t, y, p, mem)
-    return _lugre_guard(t, y, p, mem)
-
-
-@njit(cache=True)
-def _jump(model, t, y, p, mem):
-    if model == MODEL_PRESLIDING:
-        _presliding_jump(t, y, p, mem)
-    else:
-        _lugre_jump(t, y, p, mem)
-
-
-@njit(cache=True)
-def _stop(model, t, y, p, mem):
-    if model == MODEL_PRESLIDING:
-        return _presliding_stop(t, y, p, mem)
-    return _lugre_stop(t, y, p, mem)
-
+from .common import EVENT_REVERSAL
+from .table import _force, _guard, _jump, _rhs, _stop, _stop_rises_between_jumps
 
 # ---------------------------------------------------------------------------------
 # the one integrator
@@ -108,14 +66,6 @@ _EVENT_STOP, _EVENT_GUARD = 0, 1
 
 
 @njit(cache=True)
-def _stop_rises_between_jumps(model):
-    """Whether the stop function can only rise until the next jump: then one check at
-    the end of the interval replaces the scan. True for the presliding model, whose
-    ``s·|x − x_r|`` grows while ẋ keeps its sign; LuGre's −dF/dt has no such order."""
-    return model == MODEL_PRESLIDING
-
-
-@njit(cache=True)
 def _first_crossing(model, which, t0, y0, f0, y1, f1, h, p, mem, work, theta_max, scan):
     """First θ in (0, ``theta_max``] where event ``which`` fires along the step's
     interpolant.
@@ -156,35 +106,63 @@ def _first_crossing(model, which, t0, y0, f0, y1, f1, h, p, mem, work, theta_max
 
 
 @njit(cache=True)
-def _record(model, rec_t, rec_y, rec_F, n_rec, t, y, p, mem):
-    """Store one sample while the record arrays have room (the force is evaluated only
-    then: a sweep records nothing); returns the new count."""
+def _record(model, rec, n_rec, t, y, p, mem, code):
+    """Store one sample (t, y, F, mem and the event ``code``, 0 for none) in the record
+    ``rec = (t, y, F, mem, code)`` while it has room (the force is evaluated only then:
+    a sweep records nothing); returns the new count."""
+    rec_t, rec_y, rec_F, rec_mem, rec_code = rec
     if n_rec < rec_t.size:
         rec_t[n_rec] = t
         rec_y[n_rec, :] = y
         rec_F[n_rec] = _force(model, t, y, p, mem)
+        rec_mem[n_rec, :] = mem
+        rec_code[n_rec] = code
         n_rec += 1
     return n_rec
 
 
 @njit(cache=True)
-def _integrate(model, y0, mem, p, t_end, rtol, atol, h_max, max_steps, rec_t, rec_y, rec_F):
+def _record_grid(model, rec, n_rec, j, n_grid, t_end, t0, y0, f0, y1, f1, h, theta, p, mem,
+                 work):
+    """Record the output grid's samples ``t_end·j/(n_grid − 1)`` that fall in the
+    accepted part ``(t0, t0 + θ·h]`` of a step, interpolated; returns (n_rec, next j)."""
+    t1 = t0 + theta * h
+    while j < n_grid:
+        t_grid = t_end * j / (n_grid - 1)
+        if t_grid > t1:
+            break
+        _hermite(y0, f0, y1, f1, h, (t_grid - t0) / h, work)
+        n_rec = _record(model, rec, n_rec, t_grid, work, p, mem, 0)
+        j += 1
+    return n_rec, j
+
+
+@njit(cache=True)
+def _integrate(model, y0, mem, p, t_end, rtol, atol, h_max, max_steps, rec, n_grid=0,
+               event_mask=-1):
     """Integrate from t = 0 until ``stop`` fires, ``t_end`` or ``max_steps``.
 
     Returns ``(status, t, F, n_recorded, n_jumps)``; the final state is left in ``y0``.
-    Each accepted step (and each event) is recorded while ``rec_t`` has room.
+    With ``n_grid = 0`` each accepted step and each event is recorded in ``rec`` (see
+    :func:`_record`) while it has room; with ``n_grid >= 2`` the uniform grid of
+    ``n_grid`` times over [0, t_end] is, and the events whose code shares a bit with
+    ``event_mask`` while the room beyond the grid lasts. An event is recorded after its jump (the new branch's memory; x, ẋ
+    and the presliding force are continuous across it).
     """
     n = y0.size
     y = y0
     k1 = np.empty(n); k2 = np.empty(n); k3 = np.empty(n); k4 = np.empty(n)
     k5 = np.empty(n); k6 = np.empty(n); k7 = np.empty(n)
-    ytmp = np.empty(n); ynew = np.empty(n); work = np.empty(n)
+    ytmp = np.empty(n); ynew = np.empty(n); work = np.empty(n); grid_work = np.empty(n)
     t = 0.0
     h = min(h_max, t_end * 1e-6)
     _rhs(model, t, y, p, mem, k1)
     n_rec = 0
     n_jumps = 0
-    n_rec = _record(model, rec_t, rec_y, rec_F, n_rec, t, y, p, mem)
+    n_rec = _record(model, rec, n_rec, t, y, p, mem, 0)
+    j_grid = 1  # the next grid sample (t = 0 is recorded)
+    every_step = n_grid == 0
+    event_room = rec[0].size - n_grid  # events never take a grid sample's place
     for _ in range(max_steps):
         if t >= t_end:
             return STATUS_TIMEOUT, t, _force(model, t, y, p, mem), n_rec, n_jumps
@@ -226,26 +204,36 @@ def _integrate(model, y0, mem, p, t_end, rtol, atol, h_max, max_steps, rec_t, re
         theta_end = theta_jump if theta_jump >= 0 else 1.0
         theta_stop = _first_crossing(model, _EVENT_STOP, t, y, k1, ynew, k7, h, p, mem, work,
                                      theta_end, not _stop_rises_between_jumps(model))
+        theta_done = theta_stop if theta_stop >= 0 else theta_end
+        if not every_step:
+            n_rec, j_grid = _record_grid(model, rec, n_rec, j_grid, n_grid, t_end, t, y, k1,
+                                         ynew, k7, h, theta_done, p, mem, grid_work)
         if theta_stop >= 0:
             t_stop = t + theta_stop * h
             y[:] = work
             F = _force(model, t_stop, y, p, mem)
-            n_rec = _record(model, rec_t, rec_y, rec_F, n_rec, t_stop, y, p, mem)
+            n_rec = _record(model, rec, n_rec, t_stop, y, p, mem, 0)
             return STATUS_BREAKAWAY, t_stop, F, n_rec, n_jumps
         if theta_jump >= 0:
             t = t + theta_jump * h
             y[:] = ytmp
-            n_rec = _record(model, rec_t, rec_y, rec_F, n_rec, t, y, p, mem)
-            _jump(model, t, y, p, mem)
+            code = _jump(model, t, y, p, mem)
             n_jumps += 1
+            if every_step:
+                n_rec = _record(model, rec, n_rec, t, y, p, mem, code)
+            elif code & event_mask and event_room > 0:
+                n_rec = _record(model, rec, n_rec, t, y, p, mem, code)
+                event_room -= 1
             _rhs(model, t, y, p, mem, k1)
-            # the new branch starts with an infinite presliding stiffness: restart small
-            h = max(h * 1e-3, 1e-14 * max(t, 1.0))
+            if code & EVENT_REVERSAL:
+                # the new branch starts with an infinite presliding stiffness: restart small
+                h = max(h * 1e-3, 1e-14 * max(t, 1.0))
             continue
         t += h
         y[:] = ynew
         k1[:] = k7
-        n_rec = _record(model, rec_t, rec_y, rec_F, n_rec, t, y, p, mem)
+        if every_step:
+            n_rec = _record(model, rec, n_rec, t, y, p, mem, 0)
         h *= min(5.0, 0.9 * max(norm, 1e-10) ** -0.2)
     return STATUS_STEP_LIMIT, t, _force(model, t, y, p, mem), n_rec, n_jumps
 
@@ -261,107 +249,17 @@ def _sweep(model, y0, mem0, p, k_index, ks, t_ends, rtol, atols, h_max_frac, max
     F_ba = np.empty(nk)
     status = np.empty(nk, dtype=np.int64)
     jumps = np.empty(nk, dtype=np.int64)
-    no_t = np.empty(0)
-    no_y = np.empty((0, y0.size))
+    nothing = (np.empty(0), np.empty((0, y0.size)), np.empty(0), np.empty((0, mem0.size)),
+               np.empty(0, dtype=np.int64))
     for j in range(nk):
         pj = p.copy()
         pj[k_index] = ks[j]
         y = y0.copy()
         mem = mem0.copy()
         st, t, F, _, nj = _integrate(model, y, mem, pj, t_ends[j], rtol, atols[j],
-                                     t_ends[j] * h_max_frac, max_steps, no_t, no_y, no_t)
+                                     t_ends[j] * h_max_frac, max_steps, nothing, 0, -1)
         status[j] = st
         t_ba[j] = t if st == STATUS_BREAKAWAY else np.nan
         F_ba[j] = F if st == STATUS_BREAKAWAY else np.nan
         jumps[j] = nj
     return t_ba, F_ba, status, jumps
-
-
-
-@dataclass(frozen=True)
-class RampBreakaway:
-    """Break-away of a ramp experiment for each rate.
-
-    Attributes
-    ----------
-    k : numpy.ndarray
-        Actuation force rates [N/s].
-    u_ba : numpy.ndarray
-        Actuation force at break-away ``k·t_ba`` [N] (what an experiment reports).
-    F_ba : numpy.ndarray
-        Friction at break-away [N].
-    t_ba : numpy.ndarray
-        Break-away time [s]; NaN where no break-away happened before the time limit.
-    reversals : numpy.ndarray
-        Number of motion reversals before break-away.
-    """
-
-    k: np.ndarray
-    u_ba: np.ndarray
-    F_ba: np.ndarray
-    t_ba: np.ndarray
-    reversals: np.ndarray
-
-
-@dataclass(frozen=True)
-class Trajectory:
-    """One simulated ramp: samples at the accepted steps and events."""
-
-    t: np.ndarray
-    x: np.ndarray
-    v: np.ndarray
-    F: np.ndarray
-    u: np.ndarray
-    t_ba: float
-    F_ba: float
-    reversals: int
-    #: LuGre's bristle deflection z [m] per sample (None for the presliding model)
-    bristle: np.ndarray | None = None
-
-
-#: Default relative tolerance of the adaptive integrator. On the default preset the
-#: 15-rate Fig. 3 sweep then agrees with rtol = 1e-12 to 0.3 % (see benchmarks/).
-DEFAULT_RTOL = 1e-6
-#: Tightest tolerance accepted; below it the step size underflows on long chattering runs.
-MIN_RTOL = 1e-12
-#: Largest step as a fraction of the time limit.
-_H_MAX_FRACTION = 1e-3
-
-
-@dataclass(frozen=True)
-class _Model:
-    """A dynamic model's id in the compiled model table and where its rate k sits in ``p``."""
-
-    id: int
-    k_index: int
-
-
-PRESLIDING = _Model(MODEL_PRESLIDING, _P_K)
-LUGRE = _Model(MODEL_LUGRE, _L_K)
-
-
-def _check_rtol(rtol):
-    check_positive(rtol=rtol)
-    if not MIN_RTOL <= rtol <= 1e-3:
-        raise ValueError(f"rtol must be in [{MIN_RTOL}, 1e-3], got {rtol}")
-
-
-def _run_sweep(model, ks, p, y0, mem0, t_end, atols, rtol, max_steps):
-    t_ba, F_ba, status, jumps = _sweep(model.id, y0, mem0, p, model.k_index, ks, t_end, rtol,
-                                       atols, _H_MAX_FRACTION, max_steps)
-    return RampBreakaway(ks, ks * t_ba, F_ba, t_ba, jumps)
-
-
-def _run_one(model, k, p, y0, mem0, t_end, atol, rtol, max_steps, capacity):
-    p = p.copy()
-    p[model.k_index] = k
-    y, mem = y0.copy(), mem0.copy()
-    rec_t, rec_y, rec_F = np.empty(capacity), np.empty((capacity, y.size)), np.empty(capacity)
-    status, t, F, n, jumps = _integrate(model.id, y, mem, p, t_end, rtol, atol,
-                                        t_end * _H_MAX_FRACTION, max_steps, rec_t, rec_y, rec_F)
-    broke = status == STATUS_BREAKAWAY
-    return Trajectory(rec_t[:n], rec_y[:n, 0], rec_y[:n, 1], rec_F[:n], k * rec_t[:n],
-                      t if broke else np.nan, F if broke else np.nan, int(jumps),
-                      rec_y[:n, 2].copy() if y.size > 2 else None)
-
-

@@ -43,7 +43,7 @@ def _lugre_guard(t, y, p, mem):
 
 @njit(cache=True)
 def _lugre_jump(t, y, p, mem):
-    pass
+    return 0  # never called: the guard never crosses
 
 
 @njit(cache=True)
@@ -63,7 +63,8 @@ def _lugre_stop(t, y, p, mem):
 
 
 
-def _lugre_problem(ks, params, rtol):
+def _lugre_params(params):
+    """LUGRE_1995 with the checked overrides ``params``, and its vector ``p`` (k = 0)."""
     unknown = sorted(set(params or {}) - set(LUGRE_1995))
     if unknown:
         raise ValueError(f"unknown LuGre parameter(s) {unknown}; known: {sorted(LUGRE_1995)}")
@@ -76,6 +77,11 @@ def _lugre_problem(ks, params, rtol):
     check_stribeck(q["Fc"], q["Fs"], q["vs"], q["delta"], q["sigma2"])
     p = np.array([q["sigma0"], q["sigma1"], q["sigma2"], q["Fc"], q["Fs"], q["vs"],
                   q["delta"], q["m"], 0.0])
+    return q, p
+
+
+def _lugre_problem(ks, params, rtol):
+    q, p = _lugre_params(params)
     bristle = q["Fs"] / q["sigma0"]  # bristle deflection at stiction [m]
     s = 1.0 / bristle
     t_end = 20.0 * (q["Fs"] / ks + (6.0 * q["m"] / (s * ks)) ** (1.0 / 3.0))

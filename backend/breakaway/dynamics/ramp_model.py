@@ -11,7 +11,7 @@ from numba import njit
 
 from ..params import check_fraction, check_positive, check_stribeck
 from ..presliding import shape_scalar
-from .common import _g
+from .common import EVENT_REVERSAL, _g
 
 _P_FC, _P_FS, _P_V, _P_DELTA, _P_SIGMA, _P_S, _P_M, _P_K, _P_ZBA = range(9)
 
@@ -42,6 +42,7 @@ def _presliding_jump(t, y, p, mem):
     mem[0] = y[0]
     mem[1] = F
     mem[2] = -mem[2]
+    return EVENT_REVERSAL
 
 
 @njit(cache=True)
@@ -52,12 +53,17 @@ def _presliding_stop(t, y, p, mem):
 
 
 
-def _presliding_problem(ks, Fc, Fs, V, delta, s, sigma, m, z_ba, rtol):
-    """Parameters, initial state, memory, time limits and tolerances per rate."""
+def _presliding_params(Fc, Fs, V, delta, s, sigma, m, z_ba):
+    """The checked parameter vector ``p`` (rate k = 0)."""
     check_stribeck(Fc, Fs, V, delta, sigma)
     check_positive(s=s, m=m)
     check_fraction("z_ba", z_ba)
-    p = np.array([Fc, Fs, V, delta, sigma, s, m, 0.0, z_ba], dtype=float)
+    return np.array([Fc, Fs, V, delta, sigma, s, m, 0.0, z_ba], dtype=float)
+
+
+def _presliding_problem(ks, Fc, Fs, V, delta, s, sigma, m, z_ba, rtol):
+    """Parameters, initial state, memory, time limits and tolerances per rate."""
+    p = _presliding_params(Fc, Fs, V, delta, s, sigma, m, z_ba)
     y0 = np.zeros(2)
     mem0 = np.array([0.0, 0.0, 1.0])  # virgin state: x_r = 0, F_r = 0, d = +1
     # quasi-static time to reach the steady level, or the time the ramp alone needs

@@ -120,6 +120,12 @@ class DataError(ValueError):
         return (type(self), (self.message, self.line, self.column))
 
 
+#: Linear units and their rotary counterparts.
+_ROTARY_UNIT = {"N·s/m": "N·m·s/rad", "m/s": "rad/s", "1/m": "1/rad", "kg": "kg·m²",
+                "N": "N·m", "m": "rad", "m/s²": "rad/s²", "N/s": "N·m/s",
+                "N·(s/m)^n": "N·m·(s/rad)^n"}
+
+
 @dataclass(frozen=True, eq=False)
 class Dataset:
     """A parsed, validated measured-data file.
@@ -156,6 +162,16 @@ class Dataset:
     lines: np.ndarray
     meta_lines: dict[str, int] = field(default_factory=dict, repr=False)
     segments: tuple[int, ...] = ()
+
+    @property
+    def rotary(self) -> bool:
+        """Rotary data: ``# units: rotary`` (or forces in N·m / positions in rad in the
+        column headers, recorded by the parser as the same metadata)."""
+        return self.meta.get("units", "").strip().lower() == "rotary"
+
+    def unit(self, linear: str) -> str:
+        """The unit of a quantity of these data given its linear unit (N → N·m, …)."""
+        return _ROTARY_UNIT.get(linear, linear) if self.rotary else linear
 
     def meta_float(self, key: str, default: float | None = None) -> float | None:
         """Numeric value of a metadata line.

@@ -16,6 +16,7 @@ from .csvdata import Dataset
 from .effects import EFFECTS
 from .identifiability import Assessment, assess
 from .models import Problem, problem_for
+from .noise import orderings
 
 
 class FitError(ValueError):
@@ -208,9 +209,46 @@ def fit_model(data: Dataset, effects=(), starts=None, rows=None, max_nfev=None,
     prediction = problem.predict(params)
     r = problem.measured[rows] - prediction[rows]
     rss = float(np.dot(r, r))
-    assessment = assess(problem, best.x, best.jac, best.cost, n, best.active_mask)
+    order = smooth_order(problem, rows)
+    assessment = assess(problem, best.x, best.jac, best.cost, n, best.active_mask,
+                        best.fun, order)
+    assessment = _levels_without_drop(problem, params, rows, assessment, order)
     return FitResult(problem.effects, params, math.sqrt(rss / n),
                      bic(rss, n, len(problem.names)), n, prediction, problem, assessment)
+
+
+#: Each Stribeck level with its Coulomb level (MODEL.md §8: Fc when Fs = Fc).
+LEVEL_PAIRS = (("Fc", "Fs"), ("Fc_neg", "Fs_neg"))
+
+
+def smooth_order(problem: Problem, rows) -> np.ndarray:
+    """Positions within ``rows`` in the order along which a residual is smooth (time; v;
+    k within one direction and dwell: :func:`.noise.orderings`)."""
+    rank = np.empty(problem.data.n, dtype=np.int64)
+    rank[np.concatenate(orderings(problem)[0])] = np.arange(problem.data.n)
+    return np.argsort(rank[rows], kind="stable")
+
+
+def _levels_without_drop(problem: Problem, params: dict, rows, assessment: Assessment,
+                         order=None):
+    """MODEL.md §8: when Fs ends on its bound Fs = Fc (no Stribeck drop in the data), Fc
+    is still a result: its standard error (and whether it is determined) comes from
+    the model without the drop, Fc = Fs with V and δ held, where V and δ describe
+    nothing. The same for the negative direction's levels."""
+    ties = {low: level for low, level in LEVEL_PAIRS
+            if low in problem.names and assessment.bound.get(level) == "lower"}
+    if not ties:
+        return assessment
+    held = {name: params[name] for name in ("V", "delta") if name in problem.names}
+    reduced = problem_for(problem.data, problem.effects, {**problem.fixed, **held}, ties=ties)
+    result = _solve(reduced, reduced.to_theta(params), rows, 1)
+    without = assess(reduced, result.x, result.jac, result.cost, rows.size,
+                     result.active_mask, result.fun, order)
+    for low, level in ties.items():
+        assessment.stderr[low] = without.stderr[level]
+        assessment.determined[low] = without.determined[level]
+        assessment.why[low] = without.why[level]
+    return assessment
 
 
 def refit(data: Dataset, fit: FitResult, rows=None, max_nfev=None) -> FitResult:

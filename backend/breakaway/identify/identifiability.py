@@ -3,7 +3,16 @@
 A parameter is not determined when it sits on a bound of its range, when it moves along
 a flat direction of the fit (a near-zero singular value of the column-scaled Jacobian),
 when its relative standard error exceeds 1, or when it is correlated above 0.99 with
-another parameter. A finite standard error below 1e-9 of the value is a numerical
+another parameter.
+
+Standard errors stay valid when the model is wrong. The textbook ``s²·(JᵀJ)⁻¹`` holds for
+white residuals; on a real machine the residual is mostly what the model lacks, smooth
+along the record, and it understates the error many times over (a quantised encoder's
+turns, an out-of-library presliding shape). So each variance is the larger of that and
+the block-robust sandwich ``A⁻¹·(Σ_b g_b·g_bᵀ)·A⁻¹`` (``A = JᵀJ``, ``g_b = J_bᵀ·r_b`` over
+contiguous blocks of the rows along the kind's regressor, each as long as the
+residual's correlation time): a parameter the data fix holds in every block, one that
+follows a misfit does not. A finite standard error below 1e-9 of the value is a numerical
 artefact (a Jacobian column that rounding left almost empty), never a result: it is
 reported as not determined, with no standard error.
 """
@@ -14,8 +23,6 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-
-from .effects import param_spec
 
 #: Relative standard error above which a parameter is not determined.
 MAX_RELATIVE_ERROR = 1.0
@@ -46,7 +53,47 @@ class Assessment:
     bound: dict  # name -> "lower" / "upper" for parameters on a bound
 
 
-def assess(problem, theta, jac, cost, n, active_mask=None) -> Assessment:
+#: The residual's correlation time is summed until its autocorrelation falls below this.
+CORRELATION_CUTOFF = 0.05
+#: Blocks are at most this share of the rows long (at least ten blocks).
+MAX_BLOCK_SHARE = 0.1
+
+
+def correlation_time(residual) -> int:
+    """Rows over which a residual stays correlated: 1 + 2·Σ ρ_k over the lags until the
+    autocorrelation ρ_k first falls below :data:`CORRELATION_CUTOFF` (1 for white
+    noise)."""
+    r = np.asanyarray(residual, dtype=float) - np.mean(residual)
+    n = r.size
+    if n < 4 or not np.any(r):
+        return 1
+    size = 1 << int(2 * n - 1).bit_length()
+    spectrum = np.fft.rfft(r, size)
+    acf = np.fft.irfft(spectrum * np.conj(spectrum), size)[:n]
+    acf = acf / acf[0]
+    below = np.flatnonzero(acf[1:] < CORRELATION_CUTOFF)
+    last = int(below[0]) if below.size else n - 1
+    return max(1, int(round(1.0 + 2.0 * float(np.sum(acf[1:last + 1])))))
+
+
+def block_covariance(J, residual, order=None) -> np.ndarray:
+    """The block-robust sandwich "meat" ``Σ_b g_b·g_bᵀ`` of a least-squares fit,
+    ``g_b = J_bᵀ·r_b`` over contiguous blocks of the rows in ``order``, each as long as
+    the residual's correlation time (:func:`correlation_time`)."""
+    J = np.asarray(J, dtype=float)
+    r = np.asarray(residual, dtype=float)
+    if order is not None:
+        J, r = J[order], r[order]
+    n = r.size
+    length = int(np.clip(correlation_time(r), 1, max(1, int(MAX_BLOCK_SHARE * n))))
+    blocks = np.arange(n) // length
+    scores = np.zeros((int(blocks[-1]) + 1, J.shape[1]))
+    np.add.at(scores, blocks, J * r[:, None])
+    return scores.T @ scores
+
+
+def assess(problem, theta, jac, cost, n, active_mask=None, residual=None,
+           order=None) -> Assessment:
     """Assess a least-squares solution ``theta`` of ``problem`` on ``n`` rows.
 
     Parameters
@@ -62,6 +109,12 @@ def assess(problem, theta, jac, cost, n, active_mask=None) -> Assessment:
         Rows fitted.
     active_mask : numpy.ndarray, optional
         ``least_squares``' active bounds (−1 lower, 1 upper, 0 free).
+    residual : numpy.ndarray, optional
+        The residuals at the solution, shape (n,); with them the variances are never
+        below the block-robust sandwich's (see the module docstring).
+    order : numpy.ndarray, optional
+        The rows in the order along which the residual is smooth (the kind's
+        regressor); the given order by default.
     """
     names = problem.names
     p = len(names)
@@ -98,7 +151,15 @@ def assess(problem, theta, jac, cost, n, active_mask=None) -> Assessment:
             weight = np.max(np.abs(Vt[~keep]), axis=0)
             flat[live[weight > 0.1]] = True
         inv = (Vt[keep].T / S[keep] ** 2) @ Vt[keep]
-        cov[np.ix_(live, live)] = inv / np.outer(norms[live], norms[live]) * s2
+        scaled = inv / np.outer(norms[live], norms[live])  # (JᵀJ)⁺ on the live columns
+        classic = scaled * s2
+        if residual is not None:
+            robust = scaled @ block_covariance(J[:, live], residual, order) @ scaled
+            # each variance the larger of the two, correlations kept from the classic
+            ratio = np.sqrt(np.maximum(np.diag(robust), np.diag(classic))
+                            / np.where(np.diag(classic) > 0, np.diag(classic), 1.0))
+            classic = classic * np.outer(ratio, ratio)
+        cov[np.ix_(live, live)] = classic
 
     # to the parameters' own units (log scale, Fs carried above Fc)
     G = np.zeros((p, p))
@@ -124,7 +185,7 @@ def assess(problem, theta, jac, cost, n, active_mask=None) -> Assessment:
             reason, se = "flat", None
         elif se < ARTEFACT_RELATIVE_ERROR * abs(value):
             reason, se = "artefact", None
-        elif param_spec(name).relative and se > MAX_RELATIVE_ERROR * abs(value):
+        elif problem.spec(name).relative and se > MAX_RELATIVE_ERROR * abs(value):
             reason = "relative"
         else:
             others = [j for j in range(p) if j != i and not flat[j]
@@ -137,4 +198,5 @@ def assess(problem, theta, jac, cost, n, active_mask=None) -> Assessment:
     return Assessment(stderr, determined, why, bound)
 
 
-__all__ = ["Assessment", "MAX_CORRELATION", "MAX_RELATIVE_ERROR", "assess"]
+__all__ = ["Assessment", "MAX_CORRELATION", "MAX_RELATIVE_ERROR", "assess", "block_covariance",
+           "correlation_time"]

@@ -7,8 +7,7 @@ one count of jitter at rest into a reversal and a velocity spike. So:
 - :func:`direction` treats a direction change smaller than ``h`` as no reversal (a
   Schmitt trigger on the running extreme); with ``h = 0`` it *is* MODEL.md §3's rule;
 - :func:`position_noise` estimates the noise of x, where there is any to speak of;
-- :func:`velocity` takes each sample's slope over a window just wide enough that x
-  moves several resolutions in it (plain ``gradient`` when x is exact).
+- v and a are taken in :mod:`.derivatives`.
 """
 
 from __future__ import annotations
@@ -27,8 +26,36 @@ REVERSAL_STEPS = 3
 _QUANTUM_SHARE = 0.05
 
 
+#: The fewest decimals tried when reading the printed resolution of a column.
+_MAX_DECIMALS = 12
+#: A step this many printed units or more is the data's own (an encoder's count), not
+#: the logger's digits, however fast the values change.
+_PRINTED_STEPS = 3
+#: Gaps within this factor of the smallest are steps of one count.
+_ONE_STEP = 1.5
+
+
+def printed_unit(values) -> float:
+    """The last printed digit's unit of a column (1e-4 for values written with 4
+    decimals), or 0 when the values carry more digits than :data:`_MAX_DECIMALS`."""
+    values = np.asanyarray(values, dtype=float)
+    scale = max(float(np.max(np.abs(values))), 1e-300)
+    for decimals in range(-6, _MAX_DECIMALS + 1):
+        unit = 10.0 ** -decimals
+        # a printed value parses to within a few ulps of a multiple of its unit
+        if np.all(np.abs(values - unit * np.round(values / unit)) <= 1e-12 * scale):
+            return unit
+    return 0.0
+
+
 def quantum(values) -> float:
     """The fixed step ``q`` that every value of ``values`` sits on, or 0.
+
+    Each gap between neighbouring distinct values is read as a whole number of steps
+    (the gaps within :data:`_ONE_STEP` of the smallest are one step), the counts are
+    summed, and q is the least-squares slope of the values against their counts. So a
+    step that was converted and printed with few digits (encoder counts written in
+    degrees with 4 decimals: gaps of q ± 1e-4) is still found.
 
     Parameters
     ----------
@@ -38,10 +65,10 @@ def quantum(values) -> float:
     Returns
     -------
     float
-        ``q`` [same unit] when at least 98 % of the distinct values are integer
-        multiples of the smallest gap between distinct values (within 5 % of a step)
-        and that gap is not negligible against the typical sample-to-sample change;
-        0 otherwise.
+        ``q`` [same unit] when at least 98 % of the distinct values lie on that grid
+        (within 5 % of a step, or the printed rounding when that is coarser), and q is
+        either coarser than the printed digits or, when it is their unit, not negligible
+        against the typical sample-to-sample change; 0 otherwise.
     """
     values = np.asanyarray(values, dtype=float)
     levels = np.unique(values)
@@ -50,17 +77,27 @@ def quantum(values) -> float:
     span = float(levels[-1] - levels[0])
     gaps = np.diff(levels)
     gaps = gaps[gaps > 1e-9 * span]
-    if gaps.size == 0:
+    if gaps.size < 2:
         return 0.0
-    q = float(gaps.min())
-    ratio = (levels - levels[0]) / q
-    on_grid = np.abs(ratio - np.round(ratio)) < 0.05
+    one_step = gaps[gaps < _ONE_STEP * gaps.min()]
+    q0 = float(np.median(one_step))
+    counts = np.concatenate([[0.0], np.cumsum(np.round(np.diff(levels) / q0))])
+    q, offset = np.polyfit(counts, levels, 1)
+    if not q > 0:
+        return 0.0
+    unit = printed_unit(values)
+    # printed to a unit finer than the step, each value is off the grid by its rounding
+    tolerance = max(0.05 * q, 0.6 * unit) if unit < 0.5 * q else 0.05 * q
+    on_grid = np.abs(levels - (offset + q * counts)) <= tolerance
     if np.mean(on_grid) < 0.98:
         return 0.0
+    if q >= _PRINTED_STEPS * unit:
+        return float(q)  # a grid coarser than the digits: the data's own step
+    # a grid of the printed digits themselves counts only where it is coarse
     changes = np.abs(np.diff(values))
     changes = changes[changes > 0]
     typical = float(np.median(changes)) if changes.size else 0.0
-    return q if q >= _QUANTUM_SHARE * typical else 0.0
+    return float(q) if q >= _QUANTUM_SHARE * typical else 0.0
 
 
 @njit(cache=True)
@@ -76,23 +113,33 @@ def _direction_kernel(x, h):
         return d
     current = 1.0 if x[start] > x[0] else -1.0
     extreme = x[0]
-    at = 0
+    reached = 0  # the first sample at the extreme's value
+    at = 0  # the last one
     for i in range(n):
         if current * (x[i] - extreme) >= 0.0:
+            if x[i] != extreme:
+                reached = i
             extreme = x[i]
             at = i
             d[i] = current
         elif current * (extreme - x[i]) > h:
             # a reversal at the extreme: the samples after it move the other way, and the
-            # new extreme is the furthest of them in the new direction
+            # new extreme is the furthest of them in the new direction. An encoder holds
+            # its extreme count for a run of samples; the turn is somewhere in that run,
+            # placed in its middle (at its last sample it would be late by half the run
+            # on average, and (E6') is steepest just after a turn)
+            turn = (reached + at) // 2
             current = -current
-            extreme = x[at + 1]
-            new_at = at + 1
-            for j in range(at + 1, i + 1):
+            extreme = x[turn + 1]
+            new_reached = new_at = turn + 1
+            for j in range(turn + 1, i + 1):
                 d[j] = current
                 if current * (x[j] - extreme) >= 0.0:
+                    if x[j] != extreme:
+                        new_reached = j
                     extreme = x[j]
                     new_at = j
+            reached = new_reached
             at = new_at
         else:
             d[i] = current
@@ -139,57 +186,4 @@ def position_noise(x) -> float:
     return sigma if sigma >= _QUANTUM_SHARE * typical and sigma > 0 else 0.0
 
 
-#: An adaptive window spans at least this many resolutions of x ...
-WINDOW_RESOLUTIONS = 8
-#: ... and at most this many samples on each side.
-MAX_HALF_WINDOW = 100
-
-
-@njit(cache=True)
-def _adaptive_velocity(t, x, span, max_half):
-    n = x.size
-    v = np.empty(n)
-    for i in range(n):
-        w = 1
-        while True:
-            lo = max(i - w, 0)
-            hi = min(i + w, n - 1)
-            if abs(x[hi] - x[lo]) >= span or w >= max_half or (lo == 0 and hi == n - 1):
-                break
-            w += 1
-        # least-squares slope over the window: the counts' ±q/2 errors average out
-        # where an end-to-end difference would keep two of them
-        tm = 0.0
-        xm = 0.0
-        for j in range(lo, hi + 1):
-            tm += t[j]
-            xm += x[j]
-        tm /= hi - lo + 1
-        xm /= hi - lo + 1
-        num = 0.0
-        den = 0.0
-        for j in range(lo, hi + 1):
-            num += (t[j] - tm) * (x[j] - xm)
-            den += (t[j] - tm) ** 2
-        v[i] = num / den
-    return v
-
-
-def velocity(t, x, resolution: float = 0.0):
-    """Velocity of a position record [m/s].
-
-    ``gradient(x, t)`` (MODEL.md §3) when x is exact (``resolution = 0``). For an
-    encoder's steps or a noisy x, each sample's velocity is the slope over the
-    narrowest centred window in which x moves by at least
-    :data:`WINDOW_RESOLUTIONS` resolutions (at most :data:`MAX_HALF_WINDOW` samples on
-    each side): fast motion keeps its detail, slow motion is timed over several counts
-    instead of showing one count as a spike, and jitter at rest averages out.
-    """
-    t = np.ascontiguousarray(t, dtype=float)
-    x = np.ascontiguousarray(x, dtype=float)
-    if x.size < 5 or resolution <= 0:
-        return np.gradient(x, t)
-    return _adaptive_velocity(t, x, WINDOW_RESOLUTIONS * resolution, MAX_HALF_WINDOW)
-
-
-__all__ = ["REVERSAL_STEPS", "direction", "position_noise", "quantum", "velocity"]
+__all__ = ["REVERSAL_STEPS", "direction", "position_noise", "printed_unit", "quantum"]

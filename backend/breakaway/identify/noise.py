@@ -20,7 +20,8 @@ from math import comb
 
 import numpy as np
 
-from .kinematics import quantum
+from .derivatives import smooth_fit
+from .kinematics import printed_unit, quantum
 
 _MAD_TO_STD = 1.4826
 #: Repeats give the floor when at least this share of rows (and 6) have a repeat.
@@ -29,6 +30,17 @@ MIN_REPLICATED_SHARE = 0.3
 COMMAND_RATIO = 0.1
 #: ... or below this share of the force scale.
 COMMAND_RELATIVE = 1e-6
+#: A force column with no noise above its resolution whose changes turn less often than
+#: this is programmed (noise turns half of the time or more).
+COMMAND_TURNS = 0.1
+#: Changes a column needs before their turns are counted.
+MIN_CHANGES = 20
+#: A force whose fast part a filter of x's explains this well is computed from x ...
+CONTROLLER_R2 = 0.9
+#: ... over this many samples of x's history ...
+CONTROLLER_LAGS = 16
+#: ... the fast parts being what a local quadratic over this many samples leaves.
+FAST_WINDOW = 9
 
 
 @dataclass
@@ -177,26 +189,79 @@ def noise_floor(problem) -> float:
     return estimate(problem).value
 
 
+def turn_share(values) -> float:
+    """Share of the nonzero changes of a column that turn against the previous nonzero
+    change: about 1/2 to 2/3 for noise of any size against the column's steps, near 0
+    for a programmed ramp, a sine or a held setpoint (it turns only at its extremes);
+    NaN with fewer than :data:`MIN_CHANGES` changes."""
+    steps = np.diff(np.asanyarray(values, dtype=float))
+    signs = np.sign(steps[steps != 0])
+    if signs.size < MIN_CHANGES:
+        return math.nan
+    return float(np.mean(signs[1:] != signs[:-1]))
+
+
+def computed_from_x(t, x, F) -> float:
+    """How much of the force's fast part a linear filter of the position's fast part
+    over the last :data:`CONTROLLER_LAGS` samples explains (R², 0 … 1): 1 for a
+    controller's output computed from the encoder it reads (its P and D terms turn
+    each count into a kick), far below for a measured force, whose sensor's noise no
+    position explains. The fast parts are what a local quadratic over
+    :data:`FAST_WINDOW` samples leaves."""
+    t, x, F = (np.asanyarray(a, dtype=float) for a in (t, x, F))
+    n = x.size
+    if n < 10 * CONTROLLER_LAGS:
+        return 0.0
+    x_fast = x - smooth_fit(t, x, FAST_WINDOW)[0]
+    F_fast = (F - smooth_fit(t, F, FAST_WINDOW)[0])[CONTROLLER_LAGS:]
+    lagged = np.column_stack([x_fast[CONTROLLER_LAGS - k:n - k] for k in range(CONTROLLER_LAGS)])
+    spread = float(np.var(F_fast))
+    if not spread > 0:
+        return 0.0
+    coef, *_ = np.linalg.lstsq(lagged, F_fast, rcond=None)
+    return float(1.0 - np.var(F_fast - lagged @ coef) / spread)
+
+
+def programmed_force(problem, noise: NoiseFloor) -> bool:
+    """Whether the force column is a programme's or a controller's output, not a
+    measurement (see :func:`command_floor`): such a force has no glitches, and a
+    sharp change in it is what was commanded."""
+    if problem.kind == "breakaway" or noise.method == "replicates":
+        return False
+    e_F = noise.smooth_F
+    resolution = max(printed_unit(problem.measured), noise.quantum_F)
+    if math.isfinite(e_F) and e_F <= resolution and turn_share(problem.measured) < COMMAND_TURNS:
+        return True
+    return problem.kind == "timeseries" and computed_from_x(
+        problem.t, problem.recorded_x, problem.measured) >= CONTROLLER_R2
+
+
 def command_floor(problem, noise: NoiseFloor, residual) -> NoiseFloor | None:
     """The floor when the force column is a noise-free command, else None.
 
-    The force is a command when its own differences are far smaller than those of the
-    base model's residual (the residual then carries the noise of x through the model),
-    or negligible against the force scale. The floor is then the residual's
-    differences estimate (never below the force quantisation).
+    The force is a command when it carries no noise above its own resolution: its
+    differences estimate is at most its last printed digit or its steps, and it turns
+    (goes up, then down) only where the programme does (:func:`turn_share` below
+    :data:`COMMAND_TURNS`): a programmed ramp, a setpoint held by a PLC, a DAC's steps.
+    Or it is a controller's output, computed from the position it reads
+    (:func:`computed_from_x` at least :data:`CONTROLLER_R2`). Or its differences are far smaller than the base model's residual's (the residual
+    then carries the noise of x through the model), or negligible against the force
+    scale. The floor is then the residual's differences estimate (never below the
+    force quantisation); the noise of x through the model is added by the caller.
     """
     if problem.kind == "breakaway" or noise.method == "replicates":
         return None
     e_F = noise.smooth_F
     e_r = difference_sigma(residual, orderings(problem))
-    if not (math.isfinite(e_F) and math.isfinite(e_r) and e_r > 0):
+    if not (math.isfinite(e_F) and math.isfinite(e_r)):
         return None
-    if not (e_F < COMMAND_RATIO * e_r or e_F < COMMAND_RELATIVE * problem.scales.force):
+    quiet = e_r > 0 and (e_F < COMMAND_RATIO * e_r or e_F < COMMAND_RELATIVE * problem.scales.force)
+    if not (quiet or programmed_force(problem, noise)):
         return None
     value = max(e_r, noise.quantum_F / math.sqrt(12))
     return NoiseFloor(value, "residual differences (force is a command)", noise.quantum_F,
                       e_F, 0, command=True)
 
 
-__all__ = ["NoiseFloor", "command_floor", "difference_sigma", "estimate", "noise_floor",
+__all__ = ["programmed_force", "computed_from_x", "turn_share", "NoiseFloor", "command_floor", "difference_sigma", "estimate", "noise_floor",
            "orderings"]

@@ -16,15 +16,9 @@ def _clean(value):
     return value if math.isfinite(value) else None
 
 
-def is_rotary(data) -> bool:
-    """Rotary data: ``# units: rotary`` (or forces in N·m / positions in rad in the
-    column headers, recorded by the parser as the same metadata)."""
-    return data.meta.get("units", "").strip().lower() == "rotary"
-
-
 def units(data) -> dict[str, str]:
     """Units of the data's columns and of every parameter key, linear or rotary."""
-    rotary = is_rotary(data)
+    rotary = data.rotary
     columns = {"F": "N", "F_ba": "N", "x": "m", "v": "m/s", "t": "s", "k": "N/s",
                "dwell": "s", "a": "m/s²"}
     return {name: unit_of(u, rotary) for name, u in columns.items()}
@@ -38,9 +32,10 @@ def model_entry(fit: FitResult) -> dict:
             "rmse": _clean(fit.rmse), "bic": _clean(fit.bic)}
 
 
-def parameter_units(data, names) -> dict[str, str]:
-    rotary = is_rotary(data)
-    return {name: unit_of(param_spec(name).unit, rotary) for name in names}
+def parameter_units(data, names, effects=()) -> dict[str, str]:
+    """Units of the parameter keys ``names`` of a model with ``effects``."""
+    rotary = data.rotary
+    return {name: unit_of(param_spec(name, effects).unit, rotary) for name in names}
 
 
 def report(diagnosis: Diagnosis) -> dict:
@@ -49,7 +44,9 @@ def report(diagnosis: Diagnosis) -> dict:
     Besides the §8 keys: each step's held-out error ``heldout``; ``units`` (of the
     columns and of every parameter, linear or rotary); ``noise_method`` (how the floor
     was estimated); ``screened_rows`` (rows of the blocks the candidates were screened
-    on, 0 when every row was used) and ``seconds`` (wall time).
+    on, 0 when every row was used) and ``seconds`` (wall time); what an export of the
+    model needs beyond ``final.params``: ``t_0`` (timeseries: the first sample's time,
+    where ``drift`` refers to) and ``s`` (breakaway: the presliding scale E13 used).
     """
     d = diagnosis
     return {
@@ -74,10 +71,23 @@ def report(diagnosis: Diagnosis) -> dict:
                            "reason": c.reason}
                        for e, c in d.candidates.items()},
         "units": {**units(d.data),
-                  **parameter_units(d.data, list(d.base.params) + list(d.final.params))},
+                  **parameter_units(d.data, list(d.base.params) + list(d.final.params),
+                                   d.final.effects)},
+        **({"derivatives": d.base.problem.derivatives.entry()}
+           if d.data.kind == "timeseries" else {}),
         "screened_rows": d.screened_rows,
         "seconds": round(d.seconds, 3),
+        **_context(d.data),
     }
+
+
+def _context(data) -> dict:
+    """``t_0`` of a time series, ``s`` of break-away data (see :func:`report`)."""
+    if data.kind == "timeseries":
+        return {"t_0": float(data.columns["t"][0])}
+    if data.kind == "breakaway":
+        return {"s": data.meta_float("s", 1.0)}
+    return {}
 
 
 __all__ = ["model_entry", "report", "units"]

@@ -33,6 +33,10 @@ def effect_truth(kind: str, effect: str, base: dict, problem: Problem | None = N
     if effect == "viscous":
         speed = problem.scales.speed if problem is not None else 1.0
         return {"sigma": 0.2 * Fc / speed}
+    if effect == "viscous-power":
+        # a curve well away from n = 1, as strong at the speed scale as the viscous case
+        speed = problem.scales.speed if problem is not None else 1.0
+        return {"sigma": 0.4 * Fc / speed**0.5, "n": 0.5}
     if effect == "asymmetry":
         # a different scale per direction (a pure shift of both levels would be an offset)
         return {"Fc_neg": 0.8 * Fc, "Fs_neg": 0.7 * Fs}

@@ -1,0 +1,379 @@
+"""Velocity and acceleration of a position record (MODEL.md §7 ``derivatives``).
+
+Every kind and effect that needs v or a takes them from here.
+
+- Exact x (synthetic, unquantised, noise-free): ``numpy.gradient`` for v and again for
+  a, so that the round trips of MODEL.md §3 stay exact.
+- Measured x (an encoder's steps, or noise in x) is never differenced twice: one count
+  over two samples at 1 kHz would be an acceleration of 10⁶ counts/s². Both come from
+  local polynomial fits of x over windows the data choose:
+
+  - v is each sample's least-squares slope over the narrowest centred window over
+    which x spans :data:`WINDOW_RESOLUTIONS` resolutions (:func:`velocity`): fast motion
+    keeps its detail (a reversal, the presliding that follows), slow motion is timed
+    over several counts instead of showing one count as a spike;
+  - a is the curvature of a quadratic (Savitzky–Golay,
+    :func:`scipy.signal.savgol_filter`; the same fit in t where the sampling is
+    uneven) over the narrowest window in which the error of x (``q/√12`` for steps of
+    q, the noise std otherwise, or what a short local fit leaves of x when that is
+    larger: :func:`position_error`) contributes at most :data:`NOISE_TO_SIGNAL` of a's
+    RMS (:func:`choose_window`): a wider window only smooths the signal, a narrower
+    one lets the counts through.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from numba import njit
+from scipy.signal import savgol_coeffs, savgol_filter
+
+#: An adaptive window spans at least this many resolutions of x ...
+WINDOW_RESOLUTIONS = 8
+#: ... and at most this many samples on each side.
+MAX_HALF_WINDOW = 100
+
+
+@njit(cache=True)
+def _adaptive_velocity(t, x, span, max_half):
+    n = x.size
+    v = np.empty(n)
+    duration = np.empty(n)
+    for i in range(n):
+        w = 1
+        low = high = x[i]
+        while True:
+            lo = max(i - w, 0)
+            hi = min(i + w, n - 1)
+            # the range the window covers, not its ends' difference: at a turn the two
+            # ends sit at the same height while the body has moved
+            low = min(low, x[lo], x[hi])
+            high = max(high, x[lo], x[hi])
+            if high - low >= span or w >= max_half or (lo == 0 and hi == n - 1):
+                break
+            w += 1
+        # least-squares slope over the window: the counts' ±q/2 errors average out
+        # where an end-to-end difference would keep two of them
+        tm = 0.0
+        xm = 0.0
+        for j in range(lo, hi + 1):
+            tm += t[j]
+            xm += x[j]
+        tm /= hi - lo + 1
+        xm /= hi - lo + 1
+        num = 0.0
+        den = 0.0
+        for j in range(lo, hi + 1):
+            num += (t[j] - tm) * (x[j] - xm)
+            den += (t[j] - tm) ** 2
+        v[i] = num / den
+        duration[i] = t[hi] - t[lo]
+    return v, duration
+
+
+#: The position a model runs on is a local quadratic over the narrowest window over
+#: which x spans this many resolutions ...
+POSITION_RESOLUTIONS = 4
+#: ... and at least this many samples on each side.
+MIN_POSITION_HALF_WINDOW = 2
+
+
+@njit(cache=True)
+def _adaptive_position(t, x, span, min_half, max_half):
+    n = x.size
+    p = np.empty(n)
+    for i in range(n):
+        w = min_half
+        while True:
+            lo = max(i - w, 0)
+            hi = min(i + w, n - 1)
+            low = high = x[lo]
+            for j in range(lo, hi + 1):
+                low = min(low, x[j])
+                high = max(high, x[j])
+            if high - low >= span or w >= max_half or (lo == 0 and hi == n - 1):
+                break
+            w += 1
+        s0 = s1 = s2 = s3 = s4 = 0.0
+        b0 = b1 = b2 = 0.0
+        for j in range(lo, hi + 1):
+            u = t[j] - t[i]
+            u2 = u * u
+            s0 += 1.0
+            s1 += u
+            s2 += u2
+            s3 += u2 * u
+            s4 += u2 * u2
+            b0 += x[j]
+            b1 += u * x[j]
+            b2 += u2 * x[j]
+        det = s0 * (s2 * s4 - s3 * s3) - s1 * (s1 * s4 - s3 * s2) + s2 * (s1 * s3 - s2 * s2)
+        if det == 0.0:
+            p[i] = x[i]
+        else:
+            p[i] = (b0 * (s2 * s4 - s3 * s3) - s1 * (b1 * s4 - s3 * b2)
+                    + s2 * (b1 * s3 - s2 * b2)) / det
+    return p
+
+
+def positions(t, x, resolution: float = 0.0):
+    """The positions a model runs on [m]: x itself when it is exact (MODEL.md §3); for
+    an encoder's steps or a noisy x, each sample's value of a least-squares quadratic in
+    t over the narrowest centred window (at least 5 samples) over which x spans
+    :data:`POSITION_RESOLUTIONS` resolutions. A count holds its error while the body
+    creeps through it, and (E6') is steepest just after a turn, where a model run on
+    the raw counts would jump by a good part of Fs at every count (a presliding reach
+    of a few counts); the fit averages the counts' errors and keeps a quick turn."""
+    t = np.ascontiguousarray(t, dtype=float)
+    x = np.ascontiguousarray(x, dtype=float)
+    if x.size < 2 * MIN_POSITION_HALF_WINDOW + 1 or resolution <= 0:
+        return x
+    return _adaptive_position(t, x, POSITION_RESOLUTIONS * resolution,
+                              MIN_POSITION_HALF_WINDOW, MAX_HALF_WINDOW)
+
+
+def velocity(t, x, resolution: float = 0.0):
+    """Velocity of a position record [m/s].
+
+    ``gradient(x, t)`` (MODEL.md §3) when x is exact (``resolution = 0``). For an
+    encoder's steps or a noisy x, each sample's velocity is the slope over the
+    narrowest centred window over which x spans at least
+    :data:`WINDOW_RESOLUTIONS` resolutions (at most :data:`MAX_HALF_WINDOW` samples on
+    each side): fast motion keeps its detail, slow motion is timed over several counts
+    instead of showing one count as a spike, and jitter at rest averages out.
+    """
+    return velocity_and_span(t, x, resolution)[0]
+
+
+def velocity_and_span(t, x, resolution: float = 0.0):
+    """:func:`velocity` [m/s] and the time each sample's velocity is taken over [s]
+    (two samples' spacing for ``numpy.gradient``)."""
+    t = np.ascontiguousarray(t, dtype=float)
+    x = np.ascontiguousarray(x, dtype=float)
+    if x.size < 5 or resolution <= 0:
+        return np.gradient(x, t), np.gradient(t) * 2.0
+    return _adaptive_velocity(t, x, WINDOW_RESOLUTIONS * resolution, MAX_HALF_WINDOW)
+
+
+#: Degree of the local polynomial: a quadratic gives the slope and the curvature.
+ORDER = 2
+#: The resolution of x may contribute at most this share of a's RMS: an inertia m_e
+#: fitted on such an a is biased low by about the share squared (1 %).
+NOISE_TO_SIGNAL = 0.1
+#: Windows tried [samples], odd, about √2 apart.
+WINDOWS = (5, 7, 9, 13, 17, 25, 33, 47, 65, 93, 129, 181, 257, 363, 513)
+#: Sampling is uniform when every step is within this share of the median step.
+UNIFORM_TOLERANCE = 1e-3
+#: Rows the window is chosen on (a long record is judged on evenly spread samples).
+CHOICE_ROWS = 200_000
+
+
+@dataclass(frozen=True)
+class Derivatives:
+    """v [m/s] and a [m/s²] of a record and how they were taken."""
+
+    v: np.ndarray
+    a: np.ndarray
+    method: str  # "gradient" or "savgol"
+    window: int  # samples of a's local fit (3 for numpy.gradient's central difference)
+    order: int
+    #: the time a slow sample's velocity is taken over (median over the slower half of
+    #: the moving samples, where g of E2 is steep) [s]: no lag shorter than it can be
+    #: told from how v is taken
+    velocity_span: float = 0.0
+
+    def entry(self) -> dict:
+        """The report's ``derivatives`` object (MODEL.md §8), with how v was taken."""
+        velocity_text = ("numpy.gradient" if self.method == "gradient" else
+                         f"local slope over the narrowest window in which x moves "
+                         f"{WINDOW_RESOLUTIONS} resolutions")
+        return {"method": self.method, "window": int(self.window), "order": int(self.order),
+                "velocity": velocity_text}
+
+
+def _uniform_step(t) -> float | None:
+    """The sampling interval when ``t`` is uniformly sampled, else None."""
+    steps = np.diff(t)
+    dt = float(np.median(steps))
+    if dt > 0 and float(np.max(np.abs(steps - dt))) <= UNIFORM_TOLERANCE * dt:
+        return dt
+    return None
+
+
+@njit(cache=True)
+def _local_quadratic(t, x, half):
+    """Value, slope and curvature of a least-squares quadratic in t over each sample's
+    window of ``2·half + 1`` samples (shifted inwards at the ends), for uneven sampling."""
+    n = x.size
+    p = np.empty(n)
+    v = np.empty(n)
+    a = np.empty(n)
+    for i in range(n):
+        lo = min(max(i - half, 0), max(n - 2 * half - 1, 0))
+        hi = min(lo + 2 * half + 1, n)
+        s0 = s1 = s2 = s3 = s4 = 0.0
+        b0 = b1 = b2 = 0.0
+        for j in range(lo, hi):
+            u = t[j] - t[i]
+            u2 = u * u
+            s0 += 1.0
+            s1 += u
+            s2 += u2
+            s3 += u2 * u
+            s4 += u2 * u2
+            b0 += x[j]
+            b1 += u * x[j]
+            b2 += u2 * x[j]
+        # normal equations of x ≈ c0 + c1·u + c2·u² (Cramer's rule, 3 × 3)
+        det = s0 * (s2 * s4 - s3 * s3) - s1 * (s1 * s4 - s3 * s2) + s2 * (s1 * s3 - s2 * s2)
+        if det == 0.0:
+            p[i] = x[i]
+            v[i] = 0.0
+            a[i] = 0.0
+            continue
+        c0 = (b0 * (s2 * s4 - s3 * s3) - s1 * (b1 * s4 - s3 * b2) + s2 * (b1 * s3 - s2 * b2)) / det
+        c1 = (s0 * (b1 * s4 - s3 * b2) - b0 * (s1 * s4 - s3 * s2) + s2 * (s1 * b2 - b1 * s2)) / det
+        c2 = (s0 * (s2 * b2 - b1 * s3) - s1 * (s1 * b2 - b1 * s2) + b0 * (s1 * s3 - s2 * s2)) / det
+        p[i] = c0
+        v[i] = c1
+        a[i] = 2.0 * c2
+    return p, v, a
+
+
+def local_fit(t, x, window: int, order: int = ORDER):
+    """v and a of ``x(t)`` from a local polynomial of ``order`` over ``window`` samples.
+
+    Parameters
+    ----------
+    t, x : array_like
+        Times [s] (increasing) and positions [m].
+    window : int
+        Odd number of samples of each fit.
+    order : int
+        Degree of the polynomial (2 where the sampling is uneven).
+
+    Returns
+    -------
+    v, a : numpy.ndarray
+        [m/s], [m/s²].
+    """
+    t = np.ascontiguousarray(t, dtype=float)
+    x = np.ascontiguousarray(x, dtype=float)
+    return smooth_fit(t, x, window, order)[1:]
+
+
+def smooth_fit(t, x, window: int, order: int = ORDER):
+    """Position, velocity and acceleration of ``x(t)`` from a local polynomial of
+    ``order`` over ``window`` samples ([m], [m/s], [m/s²])."""
+    t = np.ascontiguousarray(t, dtype=float)
+    x = np.ascontiguousarray(x, dtype=float)
+    window = min(window, x.size if x.size % 2 else x.size - 1)
+    dt = _uniform_step(t)
+    if dt is None:
+        return _local_quadratic(t, x, window // 2)
+    return tuple(savgol_filter(x, window, order, deriv=k, delta=dt, mode="interp")
+                 for k in (0, 1, 2))
+
+
+def acceleration_noise(window: int, resolution: float, dt: float, order: int = ORDER) -> float:
+    """Std of a [m/s²] that a white error of ``resolution`` in x causes in a local fit
+    of ``window`` samples at interval ``dt``."""
+    coeffs = savgol_coeffs(window, order, deriv=2, delta=dt, use="dot")
+    return resolution * float(np.sqrt(np.dot(coeffs, coeffs)))
+
+
+def choose_window(t, x, resolution: float, order: int = ORDER) -> int:
+    """The narrowest window of :data:`WINDOWS` in which the resolution of x [m]
+    contributes at most :data:`NOISE_TO_SIGNAL` of a's RMS (the widest that fits the
+    record when none does)."""
+    t = np.asanyarray(t, dtype=float)
+    x = np.asanyarray(x, dtype=float)
+    stride = max(1, x.size // CHOICE_ROWS)
+    dt = float(np.median(np.diff(t)))
+    fitting = [w for w in WINDOWS if w <= max(x.size // 4, WINDOWS[0])]
+    for window in fitting:
+        _, a = local_fit(t, x, window, order)
+        noise = acceleration_noise(window, resolution, dt, order)
+        signal = math.sqrt(max(float(np.mean(a[::stride] ** 2)) - noise**2, 0.0))
+        if noise <= NOISE_TO_SIGNAL * signal:
+            return window
+    return fitting[-1]
+
+
+#: Samples of the local quadratic whose residual measures the error of x.
+ERROR_WINDOW = 9
+
+
+def position_error(t, x, quantum: float = 0.0, noise: float = 0.0) -> float:
+    """Std of the error of a recorded position [m]: the larger of what its steps or
+    noise imply (``q/√12``, the noise std) and what a local quadratic over
+    :data:`ERROR_WINDOW` samples leaves of x (a real encoder's record also carries the
+    rig's vibration and its electronics' jitter, which its steps do not show)."""
+    x = np.asanyarray(x, dtype=float)
+    implied = quantum / math.sqrt(12) if quantum > 0 else noise
+    if x.size < 2 * ERROR_WINDOW:
+        return implied
+    left = x - smooth_fit(t, x, ERROR_WINDOW)[0]
+    # a quadratic's fit takes 3 of the window's 9 degrees of freedom from white noise
+    seen = math.sqrt(float(np.mean(left**2)) / (1.0 - (ORDER + 1) / ERROR_WINDOW))
+    return max(implied, seen)
+
+
+def block_velocity(t, x, resolution: float, blocks) -> np.ndarray:
+    """:func:`velocity` of each independent block of a record [m/s]."""
+    return np.concatenate([velocity(t[i:j], x[i:j], resolution) for i, j in blocks])
+
+
+def derivatives(t, x, quantum: float = 0.0, noise: float = 0.0, blocks=None,
+                window: int | None = None) -> Derivatives:
+    """v and a of a position record (see the module docstring).
+
+    Parameters
+    ----------
+    t, x : array_like
+        Times [s] and positions [m].
+    quantum : float
+        The step of an encoder's x [m] (0: none).
+    noise : float
+        The noise std of x [m] (0: none). With neither, x is exact and
+        ``numpy.gradient`` is used.
+    blocks : list of (start, stop), optional
+        Independent records within the arrays (a screened series); each is
+        differentiated on its own.
+    window : int, optional
+        The acceleration's window [samples]; chosen from the data
+        (:func:`choose_window`) by default.
+    """
+    t = np.asanyarray(t, dtype=float)
+    x = np.asanyarray(x, dtype=float)
+    blocks = blocks or [(0, x.size)]
+    resolution = max(quantum, noise)
+    if resolution <= 0 or x.size < WINDOWS[0]:
+        v = np.concatenate([np.gradient(x[i:j], t[i:j]) for i, j in blocks])
+        a = np.concatenate([np.gradient(v[i:j], t[i:j]) for i, j in blocks])
+        return Derivatives(v, a, "gradient", 3, 2, _span(v, np.gradient(t) * 2.0))
+    if window is None:
+        first, last = max(blocks, key=lambda block: block[1] - block[0])
+        error = position_error(t[first:last], x[first:last], quantum, noise)
+        window = choose_window(t[first:last], x[first:last], error)
+    parts = [velocity_and_span(t[i:j], x[i:j], resolution) for i, j in blocks]
+    v = np.concatenate([part[0] for part in parts])
+    spans = np.concatenate([part[1] for part in parts])
+    a = np.concatenate([local_fit(t[i:j], x[i:j], window)[1] if j - i >= WINDOWS[0]
+                        else np.gradient(v[i:j], t[i:j]) for i, j in blocks])
+    return Derivatives(v, a, "savgol", window, ORDER, _span(v, spans))
+
+
+def _span(v, spans) -> float:
+    """The median span of the slower half of the moving samples [s]."""
+    speed = np.abs(v)
+    moving = speed > 0
+    if not moving.any():
+        return float(np.median(spans))
+    return float(np.median(spans[moving & (speed <= np.median(speed[moving]))]))
+
+
+__all__ = ["position_error", "POSITION_RESOLUTIONS", "positions", "velocity_and_span", "smooth_fit", "block_velocity", "MAX_HALF_WINDOW", "WINDOW_RESOLUTIONS", "velocity", "Derivatives", "NOISE_TO_SIGNAL", "ORDER", "WINDOWS", "acceleration_noise",
+           "choose_window", "derivatives", "local_fit"]

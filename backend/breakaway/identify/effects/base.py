@@ -1,0 +1,179 @@
+"""The base of the effect library (MODEL.md §7): :class:`Param`, :class:`Effect`, the
+base model's parameters and the helpers the effects share."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Callable
+
+import numpy as np
+
+from ..csvdata import _ROTARY_UNIT
+
+#: The break-away kind's fixed reading of E13 (MODEL.md §6): F̂ = avg at z* = 0.95.
+BREAKAWAY_Z = 0.95
+#: Bounds of the Stribeck exponent in fits (δ > 0, |δ| >= 0.05).
+DELTA_BOUNDS = (0.05, 10.0)
+#: Share of the moving rows each direction needs before direction effects are tried.
+MIN_DIRECTION_SHARE = 0.05
+#: ... and at least this many rows.
+MIN_ROWS_PER_DIRECTION = 5
+#: Distinct rates break-away data need before rate effects (and the Stribeck shape) are
+#: determined (MODEL.md §8 ``single-rate``).
+MIN_RATES = 3
+#: The travel must hold this many wavelengths of a ripple.
+MIN_RIPPLE_PERIODS = 2.0
+
+
+@dataclass(frozen=True)
+class Param:
+    """One fitted parameter.
+
+    Attributes
+    ----------
+    name : str
+        The report's key.
+    unit : str
+        SI unit for linear motion (N, m); :func:`unit_of` turns it rotary.
+    bounds : callable
+        ``bounds(scales) -> (lo, hi)`` in the parameter's own units.
+    log : bool
+        Carried as its logarithm in the fit (scale parameters over decades).
+    gap_of : str or None
+        Carried as ``value − params[gap_of] >= 0`` (``Fs`` above ``Fc``).
+    profiled : bool
+        Switches the model discretely: profiled on a grid, not moved by the Jacobian.
+    relative : bool
+        Its relative standard error means something (not for an angle).
+    """
+
+    name: str
+    unit: str
+    bounds: Callable
+    log: bool = False
+    gap_of: str | None = None
+    profiled: bool = False
+    relative: bool = True
+
+
+def _level(sc):
+    return 1e-9 * sc.force, 20 * sc.force
+
+
+BASE_PARAMS: dict[str, Param] = {p.name: p for p in (
+    Param("Fc", "N", _level),
+    Param("Fs", "N", lambda sc: (0.0, 20 * sc.force), gap_of="Fc"),
+    # a Stribeck velocity far below every measured speed is not identifiable and is a
+    # degenerate basin (g = Fc at any speed but exactly 0)
+    Param("V", "m/s", lambda sc: (1e-3 * sc.speed, 1e4 * sc.speed), log=True),
+    Param("delta", "", lambda sc: DELTA_BOUNDS),
+    Param("s", "1/m", lambda sc: (1e-2 / sc.travel, max(1e3 / sc.step, 1e2 / sc.travel)),
+          log=True),
+)}
+
+
+def unit_of(unit: str, rotary: bool) -> str:
+    """The unit of a quantity for linear or rotary data (N → N·m, m → rad, …)."""
+    return _ROTARY_UNIT.get(unit, unit) if rotary else unit
+
+
+# ---------------------------------------------------------------------------------
+# small helpers shared by the effects
+# ---------------------------------------------------------------------------------
+
+
+def _project(r, basis) -> float:
+    """Least-squares coefficient of ``r`` on one basis vector."""
+    return float(np.dot(r, basis) / max(float(np.dot(basis, basis)), 1e-300))
+
+
+def _fmt(value) -> str:
+    return f"{value:.3g}"
+
+
+# ---------------------------------------------------------------------------------
+# the effect base class
+# ---------------------------------------------------------------------------------
+
+
+class Effect:
+    """One effect the base model lacks (MODEL.md §7); subclasses fill in the hooks."""
+
+    name: str = ""
+    kinds: tuple[str, ...] = ()
+    params: tuple[Param, ...] = ()
+    description: str = ""
+    #: x-axis of the residual plot that shows the effect, per kind
+    regressor: dict[str, str] = {}
+
+    @property
+    def keys(self) -> tuple[str, ...]:
+        return tuple(p.name for p in self.params)
+
+    def unavailable(self, pb) -> str | None:
+        """Why the data cannot show this effect (None: it can be tried)."""
+        return None
+
+    def refuse(self, pb, residual) -> str | None:
+        """Why the current residual rules the effect out this round (None: try it)."""
+        return None
+
+    def unresolved(self, pb, params: dict) -> str | None:
+        """Why the fitted effect lies within what the data cannot resolve (a play
+        inside the encoder's resolution, a lag shorter than the velocity's own window),
+        so that it cannot be told from how the data were read (None: it can)."""
+        return None
+
+    def starts(self, pb, current: dict, residual) -> list[dict]:
+        """Starting values of the effect's parameters, read off the current residual."""
+        raise NotImplementedError
+
+    def signature(self, pb, residual, params: dict) -> str:
+        """One sentence on what in the residual points to this effect."""
+        raise NotImplementedError
+
+    # prediction hooks: neutral by default
+    def body_motion(self, pb, p, ctx):
+        return ctx
+
+    def slip_velocity(self, pb, p, v):
+        return v
+
+    def levels(self, pb, p, Fc, Fs, negative):
+        return Fc, Fs
+
+    def scale_g(self, pb, p, g):
+        return g
+
+    def target(self, pb, p, v):
+        return 0.0
+
+    def sensor(self, pb, p, F, ctx):
+        return F
+
+
+def _needs_both_directions(pb) -> str | None:
+    counts = pb.direction_counts()
+    if counts is None:
+        return "the file has no direction column"
+    pos, neg, total = counts
+    need = max(MIN_ROWS_PER_DIRECTION, math.ceil(MIN_DIRECTION_SHARE * total))
+    if min(pos, neg) < need:
+        return (f"one-direction: {pos} rows move positive and {neg} negative; each "
+                f"direction needs at least {need} to separate levels or an offset")
+    return None
+
+
+def _needs_rates(pb) -> str | None:
+    if pb.kind == "breakaway" and pb.distinct_rates < MIN_RATES:
+        return (f"single-rate: {pb.distinct_rates} distinct rate(s); a rate effect needs "
+                f"at least {MIN_RATES}")
+    return None
+
+
+def _direction_means(pb, r):
+    sliding, d = pb.sliding_rows(), pb.signed_direction()
+    pos, neg = r[sliding & (d > 0)], r[sliding & (d < 0)]
+    return (float(np.mean(pos)) if pos.size else 0.0, float(np.mean(neg)) if neg.size else 0.0)
+

@@ -1,0 +1,36 @@
+"""``inertia``: an inertial force m_e·a in the measured force (MODEL.md §7)."""
+
+from __future__ import annotations
+
+from ...quasistatic import e12_acceleration
+from ..residuals import correlation
+from .base import BREAKAWAY_Z, Effect, Param, _needs_rates, _project
+
+
+class Inertia(Effect):
+    name = "inertia"
+    kinds = ("timeseries", "breakaway")
+    params = (Param("m_e", "kg", lambda sc: (0.0, 100 * sc.force / sc.accel)),)
+    description = "an inertial force m_e·a in the measured force"
+    regressor = {"timeseries": "a", "breakaway": "k"}
+
+    def unavailable(self, pb):
+        return _needs_rates(pb)
+
+    def _acceleration(self, pb, F_hat):
+        if pb.kind == "breakaway":
+            return e12_acceleration(pb.k, F_hat, pb.s, BREAKAWAY_Z)
+        return pb.a
+
+    def sensor(self, pb, p, F, ctx):
+        return F + p["m_e"] * self._acceleration(pb, ctx.get("F_hat"))
+
+    def starts(self, pb, current, r):
+        F_hat = current["Fc"] + (current["Fs"] - current["Fc"]) / 2
+        return [{"m_e": max(_project(r, self._acceleration(pb, F_hat)), 0.0)}]
+
+    def signature(self, pb, r, params):
+        if pb.kind == "breakaway":
+            c = correlation(r, pb.k**2)
+            return f"the residual grows with k² like an inertial term (r = {c:.2f})"
+        return f"the residual follows the acceleration a = dv/dt (r = {correlation(r, pb.a):.2f})"

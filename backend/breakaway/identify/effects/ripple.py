@@ -1,0 +1,132 @@
+"""``ripple``: position-dependent friction A·sin(2πx/λ + φ) (MODEL.md §7)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from scipy.signal import lombscargle
+
+from ..residuals import correlation
+from .base import MIN_RIPPLE_PERIODS, Effect, Param, _fmt
+
+
+class Ripple(Effect):
+    name = "ripple"
+    kinds = ("timeseries",)
+    params = (Param("A", "N", lambda sc: (0.0, 10 * sc.force)),
+              # the travel must hold two wavelengths (MODEL.md §8 short-travel)
+              Param("wavelength", "m",
+                    lambda sc: (2 * sc.step, sc.travel / MIN_RIPPLE_PERIODS), log=True),
+              Param("phase", "rad", lambda sc: (-4 * math.pi, 4 * math.pi), relative=False))
+    description = "position-dependent friction A·sin(2πx/λ + φ)"
+    regressor = {"timeseries": "x"}
+
+    def unavailable(self, pb):
+        if pb.scales.travel < 8 * MIN_RIPPLE_PERIODS * pb.scales.step:
+            return "short-travel: the travel holds too few position steps for a ripple"
+        return None
+
+    def sensor(self, pb, p, F, ctx):
+        return F + p["A"] * np.sin(2 * np.pi * pb.x / p["wavelength"] + p["phase"])
+
+    def unresolved(self, pb, params):
+        """Friction locked to position repeats wherever the body is: a ripple must be
+        the stick-slip cycle's travel nowhere (MODEL.md §8 ``stick-slip``) and hold its
+        wavelength and phase in both halves of the travel."""
+        lam = params["wavelength"]
+        cycle = pb.stick_slip
+        if cycle is not None and cycle.matches(lam):
+            return (f"stick-slip: its wavelength {lam:.3g} is the distance the body slips "
+                    f"per stick-slip cycle ({cycle.travel:.3g}): the force oscillates with "
+                    f"the cycle, not with the position")
+        ripple = params["A"] * np.sin(2 * np.pi * pb.x / lam + params["phase"])
+        own = pb.measured - pb.predict(params) + ripple  # what the ripple took
+        middle = 0.5 * (float(np.min(pb.x)) + float(np.max(pb.x)))
+        halves = [pb.x < middle, pb.x >= middle]
+        found = [_local_ripple(pb.x[h], own[h], lam) for h in halves]
+        if any(f is None for f in found):
+            return None
+        (lam_a, phase_a), (lam_b, phase_b) = found
+        gap = abs(math.remainder(phase_a - phase_b, 2 * math.pi))
+        if abs(lam_a / lam_b - 1) > HALF_WAVELENGTH_TOLERANCE or gap > HALF_PHASE_TOLERANCE:
+            return (f"it does not hold across the travel: the two halves of x give "
+                    f"wavelengths {lam_a:.3g} and {lam_b:.3g}, phases {phase_a:+.2f} and "
+                    f"{phase_b:+.2f} rad")
+        return None
+
+    def refuse(self, pb, residual):
+        lam = long_wavelength(pb, residual)
+        if lam is None:
+            return None
+        return (f"short-travel: the residual's dependence on x is strongest at a wavelength "
+                f"of about {lam:.3g}, but the travel ({pb.scales.travel:.3g}) holds fewer "
+                f"than {MIN_RIPPLE_PERIODS:g} such periods")
+
+    def starts(self, pb, current, r):
+        """Wavelengths of the strongest periodogram peaks of the residual against x."""
+        x = pb.x
+        travel, step = pb.scales.travel, pb.scales.step
+        top = travel / MIN_RIPPLE_PERIODS
+        wavelengths = np.geomspace(min(max(4 * step, travel / 2000), top / 2), top, 600)
+        power = periodogram(x, r, wavelengths)
+        starts = []
+        for idx in np.argsort(power)[::-1][:40]:
+            lam = wavelengths[idx]
+            if any(abs(math.log(lam / s["wavelength"])) < 0.05 for s in starts):
+                continue
+            phase = 2 * np.pi * x / lam
+            basis = np.column_stack([np.sin(phase), np.cos(phase)])
+            (c_sin, c_cos), *_ = np.linalg.lstsq(basis, r, rcond=None)
+            starts.append({"A": float(math.hypot(c_sin, c_cos)), "wavelength": float(lam),
+                           "phase": float(math.atan2(c_cos, c_sin))})
+            if len(starts) == 3:
+                break
+        return starts
+
+    def signature(self, pb, r, params):
+        lam = params.get("wavelength")
+        if lam is None:
+            return "the residual is periodic in x"
+        phase = 2 * np.pi * pb.x / lam
+        c = math.hypot(correlation(r, np.sin(phase)), correlation(r, np.cos(phase)))
+        return (f"the residual is periodic in x with wavelength {_fmt(lam)} m "
+                f"(correlation {c:.2f} with a sinusoid of x)")
+
+
+#: The two halves of the travel must agree on the wavelength to this share ...
+HALF_WAVELENGTH_TOLERANCE = 0.08
+#: ... and on the phase at the fitted wavelength to this [rad].
+HALF_PHASE_TOLERANCE = 0.6
+
+
+def _local_ripple(x, r, wavelength):
+    """The wavelength near ``wavelength`` (within 15 %) at which ``r`` is most periodic
+    in ``x``, and the phase at ``wavelength`` itself; None for too few rows."""
+    if x.size < 20:
+        return None
+    grid = wavelength * np.linspace(0.85, 1.15, 31)
+    best = float(grid[int(np.argmax(periodogram(x, r, grid)))])
+    phase = 2 * np.pi * x / wavelength
+    basis = np.column_stack([np.sin(phase), np.cos(phase), np.ones_like(x)])
+    (c_sin, c_cos, _), *_ = np.linalg.lstsq(basis, r, rcond=None)
+    return best, float(math.atan2(c_cos, c_sin))
+
+
+def long_wavelength(pb, r):
+    """The wavelength at which ``r`` depends most on x when that is too long for the
+    travel to hold two periods (else None)."""
+    travel, step = pb.scales.travel, pb.scales.step
+    short = np.geomspace(max(4 * step, travel / 2000), travel / MIN_RIPPLE_PERIODS, 200)
+    long = np.geomspace(travel / MIN_RIPPLE_PERIODS, 4 * travel, 60)
+    p_long = periodogram(pb.x, r, long)
+    if p_long.max() <= periodogram(pb.x, r, short).max():
+        return None
+    return float(long[int(np.argmax(p_long))])
+
+
+def periodogram(x, r, wavelengths):
+    """Lomb–Scargle power of ``r`` against ``x`` at ``wavelengths`` (long records are
+    subsampled: the cost is rows × wavelengths)."""
+    stride = max(1, x.size // 4000)
+    return lombscargle(x[::stride], r[::stride] - r.mean(), 2 * np.pi / wavelengths)

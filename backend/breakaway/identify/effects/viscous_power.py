@@ -1,0 +1,53 @@
+"""``viscous-power``: σ·sgn(v)·|v|ⁿ in place of σ·v (MODEL.md §7): friction that rises
+with speed along a curve (a lubricated gear, a seal; n = 2 is quadratic drag)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..residuals import correlation
+from .base import Effect, Param, _project
+
+#: The range of the exponent n (MODEL.md §7).
+EXPONENT_BOUNDS = (0.2, 3.0)
+#: Exponents the fit starts from.
+START_EXPONENTS = (0.4, 1.0, 2.0)
+
+
+def _sigma_bounds(sc):
+    # σ·speedⁿ is a force: the bound holds 100 times the force scale at any n of the range
+    lo, hi = EXPONENT_BOUNDS
+    return 0.0, 100 * sc.force * max(sc.speed ** -lo, sc.speed ** -hi)
+
+
+def power_term(v, sigma, n):
+    """σ·sgn(v)·|v|ⁿ [N] at velocities ``v`` [m/s]."""
+    v = np.asanyarray(v, dtype=float)
+    return sigma * np.sign(v) * np.abs(v) ** n
+
+
+class ViscousPower(Effect):
+    name = "viscous-power"
+    kinds = ("timeseries", "steady")
+    params = (Param("sigma", "N·(s/m)^n", _sigma_bounds),
+              Param("n", "", lambda sc: EXPONENT_BOUNDS))
+    description = "friction rising with speed along a curve, σ·sgn(v)·|v|ⁿ"
+    regressor = {"timeseries": "v", "steady": "v"}
+
+    def target(self, pb, p, v):
+        return power_term(v, p["sigma"], p["n"])
+
+    def starts(self, pb, current, r):
+        return [{"sigma": max(_project(r, power_term(pb.v, 1.0, n)), 0.0), "n": n}
+                for n in START_EXPONENTS]
+
+    def signature(self, pb, r, params):
+        sliding, v, d = pb.sliding_rows(), pb.regressor_speed(), pb.signed_direction()
+        n = params.get("n", 1.0)
+        speed = np.abs(v[sliding])
+        c_curve = correlation(r[sliding] * d[sliding], speed ** n)
+        return (f"the residual grows with |v| in the direction of motion along a curve, "
+                f"closest to |v|^{n:.2g} (r = {c_curve:.2f})")
+
+
+__all__ = ["EXPONENT_BOUNDS", "ViscousPower", "power_term"]

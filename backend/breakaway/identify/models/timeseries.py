@@ -1,0 +1,260 @@
+"""(E6') along a measured x(t) (MODEL.md §6 ``timeseries``)."""
+
+from __future__ import annotations
+
+import weakref
+
+import numpy as np
+from scipy.ndimage import uniform_filter1d
+
+from ...presliding import _presliding_kernel
+from ...steady import stribeck_kernel
+from ..derivatives import block_velocity, derivatives, positions, smooth_fit
+from ..effects import engaged_presliding
+from ..kinematics import REVERSAL_STEPS, direction, position_noise, quantum
+from ..stickslip import find_stick_slip
+from .base import Problem, Scales, _robust_scale
+
+#: Kinematics per dataset (a fit builds many problems on one record).
+_KINEMATICS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+#: A row is in gross sliding when the presliding fraction s·|x − x_r| exceeds this: the
+#: body has travelled a quarter of the presliding distance past the point where (E6')
+#: reaches the steady curve (a fit that just touches z = 1 at a stroke's end is not).
+GROSS_SLIDING_Z = 1.25
+#: Readings of the smoothed record that estimate what the resolution of x does.
+RESOLUTION_DRAWS = 4
+#: The short of the two smoothings of the record [samples] (a quick turn survives it).
+SHORT_SMOOTHING = 13
+#: A body in presliding is held when it moves slower than this percentile of its speeds
+#: in gross sliding.
+HELD_SPEED_PERCENTILE = 10
+#: Samples averaged before the direction of a noisy x is read.
+NOISY_X_WINDOW = 21
+
+
+class TimeseriesProblem(Problem):
+    """(E6') along the measured x(t) (MODEL.md §6 ``timeseries``)."""
+
+    kind = "timeseries"
+    base_names = ("Fc", "Fs", "V", "delta", "s")
+
+    def __init__(self, data, effects=(), fixed=None, ties=None):
+        cols = data.columns
+        #: the positions as recorded, and (set with the kinematics) the positions the
+        #: model runs on: the same for exact x, a local fit of an encoder's counts
+        self.t, self.recorded_x = cols["t"], cols["x"]
+        self.measured = cols["F"]
+        #: independent records (blocks of a screened series): [start, stop) pairs
+        edges = [0, *data.segments, data.n]
+        self.blocks = list(zip(edges[:-1], edges[1:]))
+        self.F0 = data.meta_float("f0", 0.0)
+        cached = _KINEMATICS.get(data)
+        if cached is None:
+            cached = _KINEMATICS[data] = self._kinematics()
+        self.__dict__.update(cached)
+        super().__init__(data, effects, fixed, ties)
+
+    def _kinematics(self) -> dict:
+        """What every model of this record shares; computed once per dataset."""
+        #: quantisation step and noise std of x (0: none), its resolution, and the
+        #: reversal hysteresis: direction changes within a few resolutions are not real
+        self.quantum_x = quantum(self.recorded_x)
+        self.noise_x = position_noise(self.recorded_x) if self.quantum_x == 0 else 0.0
+        self.resolution_x = max(self.quantum_x, self.noise_x)
+        self.hysteresis = REVERSAL_STEPS * self.resolution_x
+        #: v and a, and how they were taken (MODEL.md §7 ``derivatives``)
+        self.x = self.model_positions(self.recorded_x)
+        self.derivatives = derivatives(self.t, self.recorded_x, self.quantum_x, self.noise_x,
+                                       self.blocks)
+        v, a = self.derivatives.v, self.derivatives.a
+        with np.errstate(divide="ignore"):
+            log_speed = np.log(np.abs(v))  # g's argument, reused by every evaluation
+        steps = np.abs(np.diff(self.x))
+        moving = steps[steps > 0]
+        scales = Scales(
+            force=_robust_scale(self.measured),
+            speed=_robust_scale(v),
+            travel=float(np.ptp(self.x)) or 1.0,
+            duration=float(self.t[-1] - self.t[0]) or 1.0,
+            accel=_robust_scale(a),
+            step=max(float(np.median(moving)) if moving.size else 1.0, self.quantum_x),
+        )
+        return {"quantum_x": self.quantum_x, "noise_x": self.noise_x,
+                "resolution_x": self.resolution_x, "hysteresis": self.hysteresis, "x": self.x,
+                "derivatives": self.derivatives, "v": v,
+                "log_speed": log_speed, "a": a, "d": self.kinematic_direction(self.x),
+                "scales": scales}
+
+    def model_positions(self, recorded):
+        """The positions the model runs on for a record of these samples
+        (:func:`..derivatives.positions`, block by block)."""
+        return np.concatenate([positions(self.t[a:b], recorded[a:b], self.resolution_x)
+                               for a, b in self.blocks])
+
+    def kinematic_velocity(self, x):
+        """v of another position record of the same samples (the body behind a play, x
+        dithered by its resolution), taken as the record's own v is."""
+        return block_velocity(self.t, x, self.resolution_x, self.blocks)
+
+    def kinematic_direction(self, x, hysteresis=None):
+        """Directions of a position record of the same samples, with this record's
+        reversal hysteresis unless another is given."""
+        hysteresis = self.hysteresis if hysteresis is None else hysteresis
+        if self.noise_x > 0 and hysteresis > 0:
+            # Gaussian noise has no largest excursion: the trigger runs on x averaged
+            # over 21 samples, where the noise std is 4.6× smaller than the hysteresis'
+            x = uniform_filter1d(x, NOISY_X_WINDOW, mode="nearest")
+        return np.concatenate([direction(x[a:b], hysteresis) for a, b in self.blocks])
+
+    def _presliding(self, ctx, target, s):
+        """(E6') block by block; a later block starts from its measured force."""
+        out = np.empty(self.x.size)
+        for a, b in self.blocks:
+            F0 = self.F0 if a == 0 else float(self.measured[a])
+            x, d = ctx["x"][a:b], ctx["d"][a:b]
+            if ctx["engaged"] is None:
+                out[a:b] = _presliding_kernel(x, d, target[a:b], s, F0)
+            else:
+                out[a:b] = engaged_presliding(x, d, target[a:b], s, F0, ctx["engaged"][a:b])
+        return out
+
+    @property
+    def reversals(self) -> int:
+        return int(np.count_nonzero(np.diff(self.d)))
+
+    def predict(self, p, dither=None, sensor=True, directions=None):
+        """Predicted force [N]; ``dither`` [m] is added to the positions (velocities
+        follow; the directions stay unless ``directions`` are given), to propagate the
+        resolution of x. ``sensor=False`` leaves out what the sensor adds (offset,
+        inertia, …): the friction alone."""
+        ctx = {"x": self.x, "v": self.v, "d": self.d, "engaged": None}
+        if dither is not None:
+            ctx["x"] = self.x + dither
+            ctx["v"] = self.kinematic_velocity(ctx["x"])
+        if directions is not None:
+            ctx["d"] = directions
+        for effect in self.effect_objects:
+            ctx = effect.body_motion(self, p, ctx)
+        v_slip = ctx["v"]
+        for effect in self.effect_objects:
+            v_slip = effect.slip_velocity(self, p, v_slip)
+        Fc, Fs = self._levels(p, ctx["d"] < 0)
+        log_speed = self.log_speed if v_slip is self.v else None
+        g = stribeck_kernel(v_slip, Fc, Fs, p["V"], p["delta"], log_speed)
+        for effect in self.effect_objects:
+            g = effect.scale_g(self, p, g)
+        target = ctx["d"] * g
+        for effect in self.effect_objects:
+            target = target + effect.target(self, p, ctx["v"])
+        F = self._presliding(ctx, np.asarray(target, dtype=float), p["s"])
+        if not sensor:
+            return F
+        for effect in self.effect_objects:
+            F = effect.sensor(self, p, F, ctx)
+        return F
+
+    def sliding_rows(self):
+        speed = np.abs(self.v)
+        return speed >= np.median(speed)
+
+    def regressor_speed(self):
+        return self.v
+
+    def signed_direction(self):
+        return self.d
+
+    def direction_counts(self):
+        moving = np.abs(self.v) >= 0.05 * self.scales.speed
+        d = self.d[moving]
+        return int(np.count_nonzero(d > 0)), int(np.count_nonzero(d < 0)), int(d.size)
+
+    def _last_reversal(self):
+        """Index of the sample before each row's last reversal (0 before the first)."""
+        change = np.flatnonzero(np.diff(self.d) != 0) + 1
+        start = np.zeros(self.x.size, dtype=int)
+        start[change] = change
+        start = np.maximum.accumulate(start)
+        return np.maximum(start - 1, 0), start > 0
+
+    @property
+    def stick_slip(self):
+        """The record's stick-slip cycle (:mod:`..stickslip`), or None; found once per
+        dataset."""
+        cached = _KINEMATICS[self.data]
+        if "stick_slip" not in cached:
+            cached["stick_slip"] = find_stick_slip(self.t, self.recorded_x, self.measured)
+        return cached["stick_slip"]
+
+    def presliding_fraction(self, params) -> np.ndarray:
+        """z = s·|x − x_r| of each row under ``params`` (x_r at the last reversal)."""
+        last, _ = self._last_reversal()
+        return params["s"] * np.abs(self.x - self.x[last])
+
+    def curve_speeds(self, params):
+        return np.abs(self.v[self.presliding_fraction(params) >= GROSS_SLIDING_Z])
+
+    def held_force(self, params):
+        """The largest friction measured each way (the force less what the sensor adds:
+        an inertial m·a is no friction held) where the body is held: the fitted
+        presliding has not reached the steady curve (z < 1), and the body moves slower
+        than nearly all of its gross sliding (a break-away under way is not held)."""
+        z = self.presliding_fraction(params)
+        held = z < 1.0
+        sliding = np.abs(self.v[z >= GROSS_SLIDING_Z])
+        if sliding.size:
+            held &= np.abs(self.v) < np.percentile(sliding, HELD_SPEED_PERCENTILE)
+        if not held.any():
+            return None
+        added = self.predict(params) - self.predict(params, sensor=False)
+        friction = (self.measured - added)[held]
+        return max(float(np.max(friction)), 0.0), max(float(-np.min(friction)), 0.0)
+
+    def resolution_noise(self, params, seed=0) -> float:
+        """RMS force error [N] that the resolution of x alone causes in the model.
+
+        The record is smoothed (the local quadratic of :mod:`..derivatives`), and the
+        model run on that path with its own reversals is compared with the model run
+        on the path read again the way the record was read — by an encoder of the same
+        step at a random phase (each reading keeps its error while the body stays
+        within a count, as real counts do), or with the same noise std — with the
+        reversals this engine finds in such a reading. Both parts count: (E6') is
+        steepest just after a reversal, where a count of x_r moves F most. Smoothing
+        can only hide detail (a quick turn), so the path is smoothed at two scales,
+        the acceleration's window and :data:`SHORT_SMOOTHING` samples, and the larger
+        error is taken.
+        """
+        if self.resolution_x == 0:
+            return 0.0
+        return max(self._reading_error(params, window, seed)
+                   for window in {SHORT_SMOOTHING, self.derivatives.window})
+
+    def _reading_error(self, params, window: int, seed: int) -> float:
+        rng = np.random.default_rng(seed)
+        smooth = np.concatenate([
+            smooth_fit(self.t[a:b], self.recorded_x[a:b], window)[0] if b - a >= window
+            else self.recorded_x[a:b] for a, b in self.blocks])
+        # the path's own reversals: any turn the reading could resolve at all
+        exact = self.predict(params, smooth - self.x,
+                             directions=self.kinematic_direction(smooth, 0.5 * self.resolution_x))
+        errors = []
+        for _ in range(RESOLUTION_DRAWS):
+            if self.quantum_x > 0:
+                phase = rng.uniform(0.0, self.quantum_x)
+                read = self.quantum_x * np.round((smooth - phase) / self.quantum_x) + phase
+            else:
+                read = smooth + self.noise_x * rng.standard_normal(smooth.size)
+            # the reading goes through what this engine does with a record
+            path = self.model_positions(read)
+            errors.append(self.predict(params, path - self.x,
+                                       directions=self.kinematic_direction(path)) - exact)
+        return float(np.sqrt(np.mean(np.square(errors))))
+
+    def after_reversal(self, reach):
+        """Rows within ``reach`` [m] of their last reversal (none before the first)."""
+        last, reversed_ = self._last_reversal()
+        return (np.abs(self.x - self.x[last]) <= reach) & reversed_
+
+    def variables(self):
+        last, _ = self._last_reversal()
+        return {"x": self.x, "x - x_r": self.x - self.x[last], "v": self.v, "t": self.t,
+                "time since reversal": self.t - self.t[last], "direction": self.d}

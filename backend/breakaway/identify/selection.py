@@ -1,0 +1,283 @@
+"""The search for the effects the data hold (MODEL.md §7): forward selection through
+:func:`.gates.gate`, the held-out error and the halves of a record (:mod:`.stability`), pairs when no single effect passes (two
+missing effects can each hide the other's gain), then a backward pass (drop an effect
+the others made redundant) and a swap pass (trade an accepted effect for a close rival
+that explains the data better)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from .csvdata import Dataset
+from .effects import EFFECTS
+from .fitting import FitResult, best_base_starts, fit_model, fit_with_effect, refit
+from .gates import MIN_BIC_DROP, gate
+from .heldout import heldout_error, heldout_rows
+from .indistinguishable import (
+    EXCLUSIVE,
+    close_rivals,
+    power_is_preferred,
+    viscous_or_detection,
+)
+from .residuals import is_white
+from .stability import unstable
+
+#: Evaluations per parameter of a candidate's screening fit.
+SCREEN_EVALUATIONS = 15
+#: Candidates (by BIC) combined in pairs when no single effect passes.
+PAIR_CANDIDATES = 3
+
+
+@dataclass
+class Step:
+    effect: str
+    fit: FitResult
+    evidence: str
+    heldout: float
+
+
+@dataclass
+class Candidate:
+    """The last verdict on one library effect."""
+
+    rmse: float | None = None
+    bic: float | None = None
+    heldout: float | None = None
+    accepted: bool = False
+    reason: str | None = None
+
+
+class Selection:
+    """The state of one search: the data, the gates' verdicts, the steps taken."""
+
+    def __init__(self, data: Dataset, noise: float, report):
+        self.data = data
+        self.noise = noise
+        self.report = report
+        self.train, self.test = heldout_rows(data)
+        self.restarts = best_base_starts(data)
+        self.verdicts: dict[str, Candidate] = {}
+        self.warnings: list[dict] = []
+        self.steps: list[Step] = []
+        self.settled: set[str] = set()  # named away by MODEL.md §7's rule
+        #: effects that came within MIN_BIC_DROP of an accepted one in its round
+        self.rivals: set[str] = set()
+        self.heldout_base = None
+        self._heldout: dict[int, tuple[FitResult, float]] = {}
+
+    def heldout(self, fit: FitResult) -> float:
+        """The held-out error of ``fit``'s model (computed once per fit; the fit is kept
+        with its value, so its id is not reused)."""
+        if id(fit) not in self._heldout:
+            self._heldout[id(fit)] = (fit, heldout_error(self.data, fit, self.train, self.test))
+        return self._heldout[id(fit)][1]
+
+    def white(self, fit: FitResult) -> bool:
+        return is_white(fit.residual(), fit.problem, self.noise)
+
+    def try_effect(self, current: FitResult, effect: str) -> FitResult | None:
+        """A candidate's fit on a short budget: enough to rank the candidates and to
+        reject the ones that do not help; the ones that pass are polished in full."""
+        try:
+            budget = SCREEN_EVALUATIONS * (len(current.problem.names) + len(EFFECTS[effect].keys) + 1)
+            return fit_with_effect(self.data, current, effect, restarts=self.restarts,
+                                   max_nfev=budget)
+        except (ValueError, FloatingPointError) as exc:
+            self.verdicts[effect] = Candidate(reason=f"the fit failed: {exc}")
+            return None
+
+    def forward(self, base: FitResult, available: list[str]) -> tuple[FitResult, float]:
+        """Add effects one round at a time while the residual is not white."""
+        current, current_heldout = base, self.heldout(base)
+        self.heldout_base = current_heldout
+        remaining = list(available)
+        total = max(len(remaining), 1)
+        while remaining and not self.white(current):
+            trials = {}
+            for i, effect in enumerate(remaining):
+                refused = EFFECTS[effect].refuse(current.problem, current.residual())
+                if refused:
+                    self.verdicts[effect] = Candidate(reason=refused)
+                    continue
+                self.report(min(0.9, 0.1 + 0.8 * (len(self.steps) + i / total) / total),
+                            f"trying {effect}")
+                trial = self.try_effect(current, effect)
+                if trial is not None:
+                    trials[effect] = trial
+            chosen = self._choose(current, current_heldout, trials)
+            if chosen is None:
+                chosen = self._choose_pair(current, current_heldout, trials)
+            if chosen is None:
+                break
+            for effect, fit, heldout, evidence in chosen:
+                self.steps.append(Step(effect, fit, evidence, heldout))
+                remaining.remove(effect)
+                self._exclude_partner(effect, remaining)
+                self.report(min(0.9, 0.1 + 0.8 * len(self.steps) / total), f"accepted {effect}")
+            current, current_heldout = chosen[-1][1], chosen[-1][2]
+            remaining = [e for e in remaining if e not in self.settled]
+        if self.white(current):
+            for effect in remaining:
+                if effect not in self.settled:
+                    verdict = self.verdicts.setdefault(effect, Candidate())
+                    verdict.reason = "not needed: the residual is white without it"
+        return current, current_heldout
+
+    def _exclude_partner(self, effect, remaining):
+        """``viscous`` and ``viscous-power`` are never in one model (MODEL.md §7)."""
+        partner = EXCLUSIVE.get(effect)
+        if partner in remaining:
+            remaining.remove(partner)
+            verdict = self.verdicts.setdefault(partner, Candidate())
+            if verdict.reason is None:
+                verdict.reason = f"never accepted together with {effect}, which was"
+
+    def _evidence(self, effect, current, trial, note=""):
+        text = EFFECTS[effect].signature(current.problem, current.residual(), trial.params)
+        return (text + f"; with it the RMSE falls from {current.rmse:.4g} to {trial.rmse:.4g} N"
+                + f" and the BIC by {current.bic - trial.bic:.1f}" + note)
+
+    def _choose(self, current, current_heldout, trials):
+        passing = []
+        for effect, trial in trials.items():
+            reason = gate(current, trial, self.noise)
+            if reason is None:
+                trials[effect] = trial = refit(self.data, trial)  # the full polish
+                reason = EFFECTS[effect].unresolved(trial.problem, trial.params)
+            self.verdicts[effect] = Candidate(trial.rmse, trial.bic, None, False, reason)
+            if reason is None:
+                passing.append(effect)
+        passing = self._settle_indistinguishable(passing, trials)
+        passing = self._settle_power(passing, trials, current_heldout)
+        for effect in sorted(passing, key=lambda e: trials[e].bic):
+            trial = trials[effect]
+            heldout = self.heldout(trial)
+            self.verdicts[effect].heldout = heldout
+            if heldout < current_heldout:
+                shaky = unstable(self.data, trial, effect)
+                if shaky:
+                    self.verdicts[effect].reason = shaky
+                    continue
+                self.rivals |= {e for e, t in trials.items()
+                                if e != effect and t.bic <= trial.bic + MIN_BIC_DROP}
+                self.warnings += close_rivals(effect, trial,
+                                              [e for e in passing if e != effect], trials)
+                return [(effect, trial, heldout, self._evidence(effect, current, trial))]
+            self.verdicts[effect].reason = (f"the held-out error rises from "
+                                            f"{current_heldout:.4g} to {heldout:.4g} N")
+        return None
+
+    def _settle_indistinguishable(self, passing, trials):
+        settled = viscous_or_detection(passing, trials, "s" in self.data.meta)
+        if settled is None:
+            return passing
+        named, other, entry = settled
+        self.warnings.append(entry)
+        self.settled.add(other)
+        self.verdicts[other].reason = (f"indistinguishable from {named} on these data; "
+                                       f"named {named} by the rule of MODEL.md §7")
+        return [e for e in passing if e != other]
+
+    def _settle_power(self, passing, trials, current_heldout):
+        """MODEL.md §7: ``viscous-power`` is named only when its n is clearly not 1 and
+        the BIC and the held-out error prefer it; otherwise ``viscous``."""
+        if "viscous-power" not in passing:
+            return passing
+        power, viscous = trials["viscous-power"], trials.get("viscous")
+        h_power = self.heldout(power)
+        self.verdicts["viscous-power"].heldout = h_power
+        if viscous is not None and "viscous" in passing:
+            h_viscous = self.heldout(viscous)
+            self.verdicts["viscous"].heldout = h_viscous
+        else:
+            h_viscous = current_heldout
+        preferred, why = power_is_preferred(power, viscous, h_power, h_viscous)
+        if preferred:
+            if "viscous" in self.verdicts:
+                self.verdicts["viscous"].reason = f"viscous-power describes the data better: {why}"
+            return [e for e in passing if e != "viscous"]
+        self.verdicts["viscous-power"].reason = f"named viscous by the rule of MODEL.md §7: {why}"
+        return [e for e in passing if e != "viscous-power"]
+
+    def _choose_pair(self, current, current_heldout, trials):
+        """Two effects that pass the gates together when neither does alone."""
+        promising = sorted((e for e in trials if trials[e].bic < current.bic),
+                           key=lambda e: trials[e].bic)[:PAIR_CANDIDATES]
+        best = None
+        for i, first in enumerate(promising):
+            for second in promising[i + 1:]:
+                self.report(0.9, f"trying {first} with {second}")
+                try:
+                    pair = fit_with_effect(self.data, trials[first], second,
+                                           restarts=self.restarts)
+                except (ValueError, FloatingPointError):
+                    continue
+                if gate(current, pair, self.noise, added=2) is None and not any(
+                        EFFECTS[e].unresolved(pair.problem, pair.params) for e in (first, second)) \
+                        and (best is None or pair.bic < best[2].bic):
+                    best = (first, second, pair)
+        if best is None:
+            return None
+        first, second, pair = best
+        heldout = self.heldout(pair)
+        if heldout >= current_heldout or any(unstable(self.data, pair, e) for e in (first, second)):
+            return None
+        first_fit = trials[first]
+        note = f"; accepted together with {second}, which it masked"
+        return [(first, first_fit, self.heldout(first_fit),
+                 self._evidence(first, current, first_fit, note)),
+                (second, pair, heldout, self._evidence(second, first_fit, pair))]
+
+    def backward(self, current, current_heldout):
+        """Drop accepted effects that the others made redundant (parsimony)."""
+        changed = True
+        while changed and len(current.effects) > 1:
+            changed = False
+            for effect in current.effects:
+                others = tuple(e for e in current.effects if e != effect)
+                reduced = fit_model(self.data, others, starts=[current.params], screen=1)
+                if reduced.bic <= current.bic + MIN_BIC_DROP / 2:
+                    kept = ", ".join(others)
+                    self.verdicts[effect] = Candidate(reduced.rmse, reduced.bic, None, False,
+                                                      f"made redundant by {kept}")
+                    current = reduced
+                    current_heldout = self.heldout(reduced)
+                    changed = True
+                    break
+        return current, current_heldout
+
+    def swap(self, current, current_heldout, available):
+        """Swap an accepted effect for a rival (a candidate that came close to an
+        accepted one in its round) when the swap explains the data better: a forward
+        step can take a stand-in for the true effect."""
+        rejected = [e for e in available if e not in current.effects and e in self.rivals
+                    and e not in self.settled]
+        for effect in list(current.effects):
+            for candidate in rejected:
+                others = tuple(e for e in current.effects if e != effect)
+                if EXCLUSIVE.get(candidate) in others:
+                    continue
+                try:
+                    reduced = fit_model(self.data, others, starts=[current.params], screen=1)
+                    trial = fit_with_effect(self.data, reduced, candidate, restarts=self.restarts)
+                except (ValueError, FloatingPointError):
+                    continue
+                if trial.bic > current.bic - MIN_BIC_DROP or \
+                        EFFECTS[candidate].unresolved(trial.problem, trial.params):
+                    continue
+                heldout = self.heldout(trial)
+                if heldout >= current_heldout or unstable(self.data, trial, candidate):
+                    continue
+                if candidate == "viscous-power" and effect == "viscous" and not \
+                        power_is_preferred(trial, current, heldout, current_heldout)[0]:
+                    continue
+                self.verdicts[effect] = Candidate(reduced.rmse, reduced.bic, None, False,
+                                                  f"replaced by {candidate}, which explains "
+                                                  f"the data better")
+                self.steps.append(Step(candidate, trial, self._evidence(
+                    candidate, reduced, trial, f"; it replaces {effect}"), heldout))
+                return self.swap(trial, heldout, available)
+        return current, current_heldout
+
+
+__all__ = ["Candidate", "PAIR_CANDIDATES", "SCREEN_EVALUATIONS", "Selection", "Step"]

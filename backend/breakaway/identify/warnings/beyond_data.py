@@ -1,0 +1,120 @@
+"""``beyond-data`` (MODEL.md §8): a parameter that describes a part of the friction
+curve the data never show is not determined, whatever its standard error says, and
+the warning gives the bound the data do set.
+
+- The record never reaches gross sliding (a presliding or creep record): Fc, Fs, V and
+  δ describe the sliding curve; the largest force held without sliding is a lower
+  bound on Fs.
+- Fs above every measured force (the Stribeck peak is an extrapolation), or below a
+  force the data hold without gross sliding (a contradiction the fit was forced into).
+- The Stribeck drop of V and δ lies entirely below the slowest speed at which the data
+  show the curve (then Fs is an extrapolation too) or above the fastest (then Fc is);
+  or there is no drop: Fs sits on Fs = Fc, and V, δ describe nothing.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..fitting import FitResult
+from . import warning
+
+#: The drop of g (E2) is seen where exp(−(v/V)^δ) lies between these fractions.
+DROP_SEEN = (0.1, 0.9)
+#: Fs is above every measured force when it exceeds the largest by this share ...
+ABOVE_SHARE = 0.05
+#: ... and by this many noise floors.
+ABOVE_NOISE = 3.0
+#: The levels of each direction and the parameters of their drop.
+LEVELS = (("Fc", "Fs"), ("Fc_neg", "Fs_neg"))
+
+
+def _drop_speeds(V: float, delta: float) -> tuple[float, float]:
+    """Speeds [m/s] where the Stribeck term exp(−(v/V)^δ) has fallen to 0.9 and 0.1."""
+    high, low = DROP_SEEN[1], DROP_SEEN[0]
+    return V * (-math.log(high)) ** (1 / delta), V * (-math.log(low)) ** (1 / delta)
+
+
+def beyond_data(fit: FitResult, noise: float) -> dict[str, str]:
+    """The parameters of ``fit`` the data cannot hold, each with the sentence that says
+    why and gives the bound the data set (first reason per parameter)."""
+    pb, p = fit.problem, fit.params
+    unit = pb.data.unit("N")
+    speed_unit = pb.data.unit("m/s")
+    found: dict[str, str] = {}
+
+    def add(names, text):
+        for name in names:
+            if name in p and name not in found and name not in pb.fixed:
+                found[name] = text
+
+    speeds = pb.curve_speeds(p)
+    held = pb.held_force(p)
+    top = float(np.max(np.abs(pb.measured)))
+    if speeds.size == 0:
+        bound = max(held) if held is not None else top
+        z = float(np.max(pb.presliding_fraction(p))) if hasattr(pb, "presliding_fraction") \
+            else math.nan
+        add(("Fc", "Fs", "V", "delta", "Fc_neg", "Fs_neg"), (
+            f"the record never reaches gross sliding (the fitted presliding fraction z "
+            f"reaches {z:.2g} of 1): the sliding curve is never shown; the largest force "
+            f"held without sliding, {bound:.4g} {unit}, is a lower bound on Fs"))
+        return found
+
+    asymmetric = "Fs_neg" in p
+    for (low, level), way in zip(LEVELS, (0, 1)):
+        if level not in p:
+            continue
+        Fs, Fc = p[level], p[low]
+        # without asymmetry one level holds both ways
+        bound = None if held is None else (held[way] if asymmetric else max(held))
+        if Fs > top * (1 + ABOVE_SHARE) and Fs > top + ABOVE_NOISE * noise:
+            add((level,), (
+                f"{level} = {Fs:.4g} {unit} lies above every force in the file (the largest is "
+                f"{top:.4g} {unit}): the Stribeck peak is an extrapolation; the data set "
+                f"only {level} ≥ {bound if bound is not None else top:.4g} {unit}"))
+        if bound is not None and Fs < bound - ABOVE_NOISE * noise:
+            add((level,), (
+                f"{level} = {Fs:.4g} {unit} is below {bound:.4g} {unit}, a force the data hold "
+                f"without gross sliding, which is a lower bound on {level}"))
+        slowest, fastest = float(np.min(speeds)), float(np.max(speeds))
+        if fit.assessment.bound.get(level) == "lower" or Fs <= Fc:
+            add(("V", "delta"), (
+                f"{level} sits on {level} = {low} (no Stribeck drop in the data): V and δ "
+                f"describe a drop that is not there"))
+            continue
+        begins, ends = _drop_speeds(p["V"], p["delta"])
+        if ends < slowest:
+            add((level, "V", "delta"), (
+                f"the Stribeck drop of V = {p['V']:.3g} and δ = {p['delta']:.3g} is over by "
+                f"{ends:.3g} {speed_unit}, below the slowest speed at which the data show "
+                f"the curve ({slowest:.3g} {speed_unit}): the data show only the level "
+                f"{low}; the friction there, {Fc + (Fs - Fc) * math.exp(-(slowest / p['V']) ** p['delta']):.4g} "
+                f"{unit}, is a lower bound on {level}"))
+        elif begins > fastest:
+            add((low, "V", "delta"), (
+                f"the Stribeck drop of V = {p['V']:.3g} and δ = {p['delta']:.3g} begins at "
+                f"{begins:.3g} {speed_unit}, above the fastest speed at which the data show "
+                f"the curve ({fastest:.3g} {speed_unit}): the data show only the peak "
+                f"{level}, which is an upper bound on {low}"))
+    return found
+
+
+def mark_beyond(fit: FitResult, beyond: dict[str, str]) -> None:
+    """Record in ``fit``'s assessment that the parameters of ``beyond`` are not
+    determined (no standard error, reason ``beyond-data``)."""
+    a = fit.assessment
+    for name in beyond:
+        a.stderr[name] = None
+        a.determined[name] = False
+        a.why[name] = "beyond-data"
+
+
+def beyond_data_warnings(beyond: dict[str, str]) -> list[dict]:
+    """One ``beyond-data`` warning per parameter."""
+    return [warning("beyond-data", name, text) for name, text in beyond.items()]
+
+
+__all__ = ["beyond_data", "beyond_data_warnings", "mark_beyond"]

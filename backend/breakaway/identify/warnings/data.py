@@ -1,0 +1,76 @@
+"""Warnings about the recording itself, before any effect is tried (MODEL.md §8):
+``quantised``, ``force-is-command``, ``one-direction`` and ``single-rate``."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..effects import EFFECTS
+from ..noise import NoiseFloor
+from . import warning
+
+
+def data_warnings(problem, noise: NoiseFloor) -> list[dict]:
+    """What the columns say about how the data were taken."""
+    return [*_quantised(problem, noise), *_command(problem, noise),
+            *_one_direction(problem), *_single_rate(problem)]
+
+
+def _quantised(problem, noise: NoiseFloor) -> list[dict]:
+    out = []
+    q_x = getattr(problem, "quantum_x", 0.0)
+    if q_x > 0:
+        part = (f"; through the model they add {noise.from_x:.3g} N to the noise floor"
+                if noise.from_x > 0 else "")
+        out.append(warning("quantised", "x", (
+            f"x takes steps of {q_x:.4g}: direction changes of up to {problem.hysteresis:.4g} "
+            f"(3 steps) are not reversals, and v is taken over a window of several "
+            f"samples{part}")))
+    if noise.quantum_F > 0:
+        floor = noise.quantum_F / math.sqrt(12)
+        column = "F_ba" if problem.kind == "breakaway" else "F"
+        out.append(warning("quantised", column, (
+            f"{column} takes steps of {noise.quantum_F:.4g} N: the noise floor is not taken "
+            f"below q/√12 = {floor:.4g} N")))
+    return out
+
+
+def _command(problem, noise: NoiseFloor) -> list[dict]:
+    if not noise.command:
+        return []
+    return [warning("force-is-command", "F", (
+        f"the force column is noise-free (differences estimate {noise.smooth_F:.3g} N): "
+        f"it is a command and the measurement noise sits in x (std about "
+        f"{getattr(problem, 'noise_x', 0.0):.3g}); the noise floor {noise.value:.4g} N is "
+        f"the larger of the base model's residual differences and that noise of x run "
+        f"through the model ({noise.from_x:.3g} N)"))]
+
+
+def _one_direction(problem) -> list[dict]:
+    counts = problem.direction_counts()
+    if counts is None or problem.kind == "breakaway":
+        return []
+    pos, neg, total = counts
+    reason = EFFECTS["asymmetry"].unavailable(problem)
+    if not (reason and reason.startswith("one-direction")):
+        return []
+    share = 100 * min(pos, neg) / max(total, 1)
+    return [warning("one-direction", None, (
+        f"motion is essentially in one direction ({pos} rows positive, {neg} negative, "
+        f"{share:.2g} % the other way): offset and asymmetry are not tried, since "
+        f"an offset and the level cannot be separated without both directions"))]
+
+
+def _single_rate(problem) -> list[dict]:
+    if not (problem.kind == "breakaway" and problem.level_only):
+        return []
+    rates = ", ".join(f"{k:g}" for k in np.unique(problem.k))
+    return [warning("single-rate", None, (
+        f"break-away measured at {problem.distinct_rates} distinct rate(s) (k = {rates}): "
+        f"only the level is determined; it is reported as Fs (= Fc), and V and δ are "
+        f"not determined"))]
+
+
+__all__ = ["data_warnings"]
