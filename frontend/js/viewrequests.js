@@ -32,8 +32,9 @@ function keep(map, name, value) {
 }
 
 function run(id) {
-  // flying: request number -> {controller, key}; shown: the number of the answer shown
-  runs[id] ??= { timer: null, flying: new Map(), count: 0, shown: 0, again: false, frames: 0 };
+  // flying: request number -> {controller, key}; shown: the number of the answer shown;
+  // drawn: the key of the answer last drawn
+  runs[id] ??= { timer: null, flying: new Map(), count: 0, shown: 0, again: false, frames: 0, drawn: null };
   return runs[id];
 }
 
@@ -119,8 +120,10 @@ function askLive(view) {
   entry.timer = null;
   const key = keyOf(view, app.state);
   entry.again = false;
-  if (app.results[view.id]?.key === key) drawView(view.id);
-  else if (flying(entry, key)) return;
+  if (app.results[view.id]?.key === key) {
+    // a change this view does not depend on (the loop's gains for the ramp) draws nothing
+    if (entry.drawn !== key) drawView(view.id);
+  } else if (flying(entry, key)) return;
   else if (entry.flying.size < LIVE_FLYING) ask(view, app.state, { live: true });
   else entry.again = true;
 }
@@ -167,16 +170,21 @@ export function drawView(id) {
   const view = viewOf(id);
   const result = app.results[id];
   if (!result || !app.frame) return Promise.resolve();
+  run(id).drawn = result.key;
   view.onDraw?.(result.value, app.state);
-  const figure = view.figure({ frame: app.frame, state: app.state, result: result.value });
-  return Promise.all([showPlot(id, figure), redraw(view.redraws ?? [])]);
+  const ctx = { frame: app.frame, state: app.state, result: result.value };
+  // a view may draw several plots from one answer: figures(ctx) → {plot id: figure}
+  const shown = view.figures ? view.figures(ctx) : { [id]: view.figure(ctx) };
+  return Promise.all([...Object.entries(shown).map(([plot, figure]) => showPlot(plot, figure)),
+    redraw(view.redraws ?? [])]);
 }
 
 // a request for a state whose curves were left is dropped (the new state's is asked for
 // once its frame is settled); when the curves stay, the views are what moved
 onStateLeft(({ frameChanged }) => {
   for (const view of requestViews()) {
-    if (frameChanged) cancel(view); else askLive(view);
+    // a view quick enough to answer (request.live(state) true) follows every change live
+    if (frameChanged && !view.request.live?.(app.state)) cancel(view); else askLive(view);
   }
 });
 onFrameDrawn(() => requestViews().forEach(schedule));
