@@ -3,7 +3,8 @@
 //   store.js        the state and the signals (#plots data-ready, data-frame, …)
 //   render.js       the one render path: state → request → figures → plots
 //   views.js        the registry of views the render path walks
-//   modelviews.js   the four model plots; rampview.js the ramp experiment
+//   modelviews.js   the four model plots; rampview.js the ramp experiment;
+//                   loopview.js the control loop (its controls, state and sentence)
 //   viewrequests.js the views with requests of their own; simulation.js the simulated
 //                   points; lessons.js pin, sweep and tour; inputs.js the controls;
 //                   phone.js the plot in view on a phone
@@ -17,6 +18,7 @@ import { PARAMS, buildControls, paramSpec, setParams, writeControls } from "./co
 import { fitReady, fitReport, initDataPanel } from "./datapanel.js";
 import { setState, wireControls } from "./inputs.js";
 import { wireLessons } from "./lessons.js";
+import { initLoop, loopReady } from "./loopview.js";
 import "./modelviews.js";
 import { PALETTE } from "./palette.js";
 import { initPhone } from "./phone.js";
@@ -96,7 +98,7 @@ function fillMenus() {
 }
 
 async function init() {
-  const response = await getJSON("/api/presets");
+  const [response] = await Promise.all([getJSON("/api/presets"), initLoop()]);
   setParams(response.parameters);
   buildControls(document);
   wireTabs();
@@ -129,6 +131,9 @@ window.breakaway = {
     await whenIdle("views", viewsBusy);
     return app.results.ramp?.value;
   },
+  /** Resolves once the control loop shows the current state, its sentence complete
+   *  (the variants it quotes run); its answer. */
+  loopReady,
   /** A copy of the current state. */
   state: () => JSON.parse(JSON.stringify(app.state)),
   /** States shown so far (live or settled), and the last settle's duration [ms]. */
