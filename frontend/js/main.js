@@ -16,9 +16,12 @@
 import { getJSON } from "./api.js";
 import { PARAMS, buildControls, paramSpec, setParams, writeControls } from "./controls.js";
 import { fitReady, fitReport, initDataPanel } from "./datapanel.js";
+import { explorerParams, measuredOverlay } from "./fitparams.js";
 import { setState, wireControls } from "./inputs.js";
 import { wireLessons } from "./lessons.js";
-import { initLoop, loopReady } from "./loopview.js";
+import {
+  fittedLoop, initLoop, loopReady, openLoopView,
+} from "./loopview.js";
 import "./modelviews.js";
 import { PALETTE } from "./palette.js";
 import { initPhone } from "./phone.js";
@@ -79,6 +82,25 @@ function applyFitted(values, { ranges = {}, measured = null } = {}) {
   return true;
 }
 
+/** The data panel's "Try this model in a control loop": the fitted model in the plant
+ *  (the loop carried to its scale), or only in the compensator; the loop in view. */
+function tryFittedInLoop(job, { compensatorOnly }) {
+  if (!app.state || !app.defaults) return false;
+  const { values, notes, ranges } = explorerParams(job.report);
+  const loop = fittedLoop(values, compensatorOnly);
+  const applied = compensatorOnly
+    ? applyFitted(loop, { measured: app.measured })
+    : applyFitted({ ...values, ...loop }, { ranges, measured: measuredOverlay(job) });
+  if (!applied) return false;
+  openLoopView();
+  const list = (part) => Object.entries(part).filter(([, v]) => typeof v === "number")
+    .map(([name, value]) => `${name} = ${value}`).join(", ");
+  return compensatorOnly
+    ? `The compensator takes the fitted model (${list(values)}); the plant keeps the sliders.`
+    : `The plant takes the fitted model (${list(values)}) and the loop its scale: ${list(loop)}.`
+      + `${notes.length ? ` Note: ${notes.join("; ")}.` : ""}`;
+}
+
 function fillMenus() {
   const select = $("preset");
   for (const preset of app.presets) {
@@ -103,7 +125,9 @@ async function init() {
   buildControls(document);
   wireTabs();
   initPhone();
-  initDataPanel({ applyParams: applyFitted });
+  initDataPanel({
+    applyParams: applyFitted, tryInLoop: tryFittedInLoop, explorerS: () => app.state?.s,
+  });
   app.defaults = response.defaults;
   app.presets = response.presets;
   fillMenus();
