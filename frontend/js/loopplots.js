@@ -1,9 +1,9 @@
 // The control loop on screen: pure functions from one POST /api/loop answer to the three
-// figures (r and x, e, u and F over t) and the rows of the stick-phase table. Every
-// stick phase is marked on the force plot: the mean ramp of u from the phase's start to
-// its break-away (its slope is the rate k of the note's ramp experiment), the simulated
-// break-away u_ba (✕) and the note's (E13) value at that k (◆). Nothing here touches
-// the DOM. Colours: palette.js.
+// figures (r and x, e, u and F over t) and the rows of the stick-phase table. Every stick
+// phase is marked on the force plot: u while the body sticks, as a band under u (its mean
+// slope is the rate k of the note's ramp experiment), the simulated break-away u_ba (✕)
+// and the note's (E13) value at that k (◆). Nothing here touches the DOM. Colours:
+// palette.js.
 
 import { PALETTE } from "./palette.js";
 
@@ -90,12 +90,26 @@ export function errorFigure(loop) {
   return { data, layout: layout("loop-error", end, { showlegend: Boolean(loop.hunting) }) };
 }
 
-/** u(t) and F(t), and every stick phase: u's mean ramp towards the break-away, the
+/** u(t) and F(t), and every stick phase: u while the body sticks (a band under u), the
  *  simulated u_ba ✕ and the note's E13 ◆ at the phase's rate k (hover: both, and k). */
 export function forceFigure(loop, state) {
   const colors = PALETTE.loopForce;
   const phases = loop.stick_phases;
+  const sticks = { x: [], y: [] };
+  for (const phase of phases) {
+    const last = indexAt(loop.t, phase.t_ba);
+    for (let i = indexAt(loop.t, phase.t_start); i <= last; i += 1) {
+      sticks.x.push(loop.t[i]);
+      sticks.y.push(loop.u[i]);
+    }
+    sticks.x.push(null);
+    sticks.y.push(null);
+  }
   const data = [
+    ...(phases.length ? [{
+      type: "scatter", mode: "lines", name: "stick phase: u while stuck", x: sticks.x, y: sticks.y,
+      connectgaps: false, opacity: 0.35, line: { color: colors.stick, width: 7 }, hoverinfo: "skip",
+    }] : []),
     { type: "scatter", mode: "lines", name: "u (controller)", x: loop.t, y: loop.u,
       line: { color: colors.u, width: 2 },
       hovertemplate: "t = %{x:.3g} s<br>u = %{y:.4g} N<extra></extra>" },
@@ -104,22 +118,15 @@ export function forceFigure(loop, state) {
       hovertemplate: "t = %{x:.3g} s<br>F = %{y:.4g} N<extra></extra>" },
   ];
   if (!phases.length) return { data, layout: layout("loop-force", duration(loop)) };
-  const ramps = { x: [], y: [] };
-  for (const phase of phases) {
-    ramps.x.push(phase.t_start, phase.t_ba, null);
-    ramps.y.push(phase.u_start, phase.u_ba, null);
-  }
   const details = phases.map((phase, i) => [i + 1, phase.k, phase.u_ba, phase.E13]);
   const hover = "phase %{customdata[0]}: t_ba = %{x:.4g} s<br>k = %{customdata[1]:.3g} N/s"
     + "<br>u_ba = %{customdata[2]:.4g} N (simulation)<br>E13 = %{customdata[3]:.4g} N"
     + ` (F̂ = ${state.F_hat})<extra></extra>`;
-  data.push(
-    { type: "scatter", mode: "lines", name: "stick: u ramps at k", x: ramps.x, y: ramps.y,
-      connectgaps: false, line: { color: colors.ramp, width: 1.2, dash: "dot" }, hoverinfo: "skip" },
-    { type: "scatter", mode: "markers", name: "u_ba (simulated)", x: phases.map((p) => p.t_ba),
-      y: phases.map((p) => p.u_ba), customdata: details,
-      marker: { color: colors.breakAway, size: 9, symbol: "x" }, hovertemplate: hover },
-  );
+  data.push({
+    type: "scatter", mode: "markers", name: "u_ba (simulated)", x: phases.map((p) => p.t_ba),
+    y: phases.map((p) => p.u_ba), customdata: details,
+    marker: { color: colors.breakAway, size: 9, symbol: "x" }, hovertemplate: hover,
+  });
   const predicted = phases.map((phase, i) => [phase, details[i]]).filter(([phase]) => phase.E13 != null);
   if (predicted.length) {
     data.push({
