@@ -1,9 +1,11 @@
 // The control loop as a view of the registry (views.js) with a request of its own
 // (POST /api/loop, MODEL.md §5b): three plots from one answer (loopplots.js), the
 // sentence under them (loopexplain.js) and the stick-phase table. The loop answers in
-// about 12 ms, so it follows every change live, the friction sliders' too. Once a state
-// rests, the variants the sentence quotes (Fs = Fc, more Kd, compensation switched) are
-// run too, at most four requests, the previous ones aborted.
+// about 12 ms, so while its card is on the screen it follows every change live, the
+// friction sliders' too (off the screen, a friction slider's run waits for the hand to
+// rest: each run takes the server's worker 15 ms, which a drag of the model plots would
+// share). Once a state rests, the variants the sentence quotes (Fs = Fc, more Kd,
+// compensation switched) are run too, at most four requests, the previous ones aborted.
 
 import { postJSON } from "./api.js";
 import { validate } from "./controls.js";
@@ -13,7 +15,7 @@ import { LOOP_AXES, loopFigures, phaseRows } from "./loopplots.js";
 import {
   LOOP_CONTROLS, fittedLoopState, loadLoopDefaults, loopBody, loopDefaults, readLoop, writeLoop,
 } from "./loopstate.js";
-import { plotMovedBy, showPlotInView } from "./phone.js";
+import { onPhone, plotMovedBy, showPlotInView } from "./phone.js";
 import { onStateLeft } from "./render.js";
 import { registerStatePart } from "./state.js";
 import { $, app, whenIdle } from "./store.js";
@@ -32,14 +34,17 @@ function settled() {
   for (const resolve of waiting.splice(0)) resolve();
 }
 
-/** Valid states only: an invalid one is not sent (its errors show at the controls). */
-const valid = (state) => !Object.keys(validate(state)).length;
+let onScreen = false; // the loop's card is on the screen (on a phone: in the strip's view)
+
+/** Asked for live at every change while the card is on the screen; valid states only
+ *  (an invalid one is not sent: its errors show at the controls). */
+const live = (state) => onScreen && !Object.keys(validate(state)).length;
 
 registerView({
   id: "loop",
   source: "request",
   axes: LOOP_AXES["loop-position"],
-  request: { url: "/api/loop", body: loopBody, debounceMs: LOOP_DEBOUNCE_MS, live: valid },
+  request: { url: "/api/loop", body: loopBody, debounceMs: LOOP_DEBOUNCE_MS, live },
   figures: ({ state, result }) => loopFigures(result, state),
   onDraw: (result, state) => showNumbers(result, state),
   onError: (error) => {
@@ -137,10 +142,11 @@ export async function loopReady() {
   return app.results.loop?.value;
 }
 
-/** Bring the loop's card into view (on a phone: into the strip at the top). */
+/** Bring the loop's card into view (on a phone: into the strip at the top, which is
+ *  always in view, so the page stays where it is). */
 export function openLoopView() {
-  showPlotInView("loop");
-  $("card-loop").scrollIntoView({ block: "start", behavior: "instant" });
+  if (onPhone()) showPlotInView("loop");
+  else $("card-loop").scrollIntoView({ block: "start", behavior: "instant" });
   $("card-loop-title").focus({ preventScroll: true });
 }
 
@@ -166,6 +172,7 @@ export async function initLoop() {
   for (const button of document.querySelectorAll("[data-loop-show]")) {
     button.addEventListener("click", () => showLoopPlot(button.dataset.loopShow));
   }
+  new IntersectionObserver(([entry]) => { onScreen = entry.isIntersecting; }).observe($("card-loop"));
   $("loop-show").addEventListener("click", openLoopView);
 }
 

@@ -158,6 +158,11 @@ window.breakaway = {
   /** Resolves once the control loop shows the current state, its sentence complete
    *  (the variants it quotes run); its answer. */
   loopReady,
+  /** The plant's parameters and the gains of the loop's answer shown, or null. */
+  loopParams: () => {
+    const shown = app.results.loop?.value;
+    return shown ? { ...shown.params, ...shown.controller } : null;
+  },
   /** A copy of the current state. */
   state: () => JSON.parse(JSON.stringify(app.state)),
   /** States shown so far (live or settled), and the last settle's duration [ms]. */

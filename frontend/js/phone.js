@@ -38,6 +38,11 @@ function mark(id) {
   }
 }
 
+/** True in the phone's layout (the plots stay at the top of the screen). */
+export function onPhone() {
+  return PHONE.matches;
+}
+
 /** Bring plot `id` into view (on a phone). */
 export function showPlotInView(id, behavior = "smooth") {
   if (!PHONE.matches) return;

@@ -150,11 +150,12 @@ function schedule(view) {
 }
 
 /** Ask ahead, at low priority, for the answers of `states` (a key press away) that only
- *  the views' requests can draw (their model curves are the ones shown). */
+ *  the views' requests can draw (their model curves are the ones shown), or that a view
+ *  drawn live at every change (request.live) draws. */
 export function prefetchViews(states) {
   for (const view of requestViews()) {
     for (const state of states) {
-      if (JSON.stringify(exploreBody(state)) !== app.frameKey) continue;
+      if (JSON.stringify(exploreBody(state)) !== app.frameKey && !view.request.live?.(state)) continue;
       const key = keyOf(view, state);
       const name = `${view.id} ${key}`;
       if (answers.has(name) || ahead.has(name)) continue;

@@ -138,6 +138,15 @@ def test_a_friction_slider_moves_the_loop_live_and_fs_equal_fc_settles_it(explor
     explorer.open("?sim=0")
     page = explorer.page
     loop_ready(explorer)
+    # off the screen (below the ramp at 1280×800) the loop waits for the hand to rest
+    mark = page.evaluate("window.__loopFrames.length")
+    page.get_by_label("Fs [N] slider", exact=True).focus()
+    page.keyboard.press("ArrowLeft")
+    loop_ready(explorer)
+    frames = page.evaluate(f"window.__loopFrames.slice({mark})")
+    assert frames and all(f["ready"] == "true" for f in frames)
+    # on the screen, it follows the friction live
+    page.get_by_role("button", name="Show the control loop", exact=True).click()
     mark = page.evaluate("window.__loopFrames.length")
     page.get_by_label("Fs [N] slider", exact=True).focus()
     page.keyboard.press("ArrowLeft")
