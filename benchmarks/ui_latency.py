@@ -14,8 +14,10 @@ come from timers in the page, so their spacing is the page's, not Playwright's:
   move it back and forth over up to 100 positions, then `change` (the release).
 
 A frame counts when `#plots` `data-frame` changes (for m: `data-ramp-frame`, the ramp
-experiment being the only plot m moves) and what it shows is the state with the new
-value; latency is from the event to that frame, both read with `performance.now()`. A
+experiment being the only plot m moves; for a slider named `loop:<name>`, e.g.
+`--sliders loop:Ki,loop:Fs`: `data-loop-frame`, the control loop's plots, scrolled into
+view) and what it
+shows is the state with the new value; latency is from the event to that frame, both read with `performance.now()`. A
 drag's latency is from each input to the first frame showing it or a later input;
 frames per second count the frames shown during the drag; "last" is from the last input
 to the frame showing its value. The obvious alternative runs in the same session: every
@@ -40,13 +42,21 @@ SLIDERS = ["Fc", "Fs", "V", "delta", "sigma", "k", "s", "z_ba", "m"]
 
 #: Installed for one run on one slider: records each frame shown (time, value shown).
 HARNESS = """
-async ({name, mode, presses, gaps, seconds, hz}) => {
+async ({name: slider, mode, presses, gaps, seconds, hz}) => {
   const plots = document.getElementById('plots');
+  const loop = slider.startsWith('loop:');
+  const name = loop ? slider.slice(5) : slider;
   const range = document.getElementById(name + '-range');
-  const ramp = name === 'm';
-  const attr = ramp ? 'data-ramp-frame' : 'data-frame';
-  const shownValue = () => ramp ? window.breakaway.viewParams('ramp')?.m : window.breakaway.state()[name];
+  const ramp = name === 'm' && !loop;
+  const attr = loop ? 'data-loop-frame' : ramp ? 'data-ramp-frame' : 'data-frame';
+  const shownValue = () => (loop ? window.breakaway.loopParams()?.[name]
+    : ramp ? window.breakaway.viewParams('ramp')?.m : window.breakaway.state()[name]);
   const sleep = (ms) => new Promise((resolve) => setTimeout(resolve, ms));
+  // the loop follows a friction slider live while its card is on the screen
+  if (loop) {
+    document.getElementById('card-loop').scrollIntoView();
+    await sleep(100);
+  }
   const shown = [];
   let last = plots.getAttribute(attr);
   const observer = new MutationObserver(() => {
@@ -89,6 +99,7 @@ async ({name, mode, presses, gaps, seconds, hz}) => {
   }
   await window.breakaway.ready();
   await window.breakaway.rampReady();
+  if (loop) await window.breakaway.loopReady();
   await sleep(100);
   observer.disconnect();
   return {inputs, shown};

@@ -165,6 +165,13 @@ export function buildControls(root = document) {
   }
 }
 
+/** Controls that views build of their own write a state too: fn(state, except). */
+const writers = [];
+
+export function registerControlWriter(fn) {
+  writers.push(fn);
+}
+
 /** Write a state into the controls (slider positions follow valid numbers only). */
 export function writeControls(state, { except = null } = {}) {
   for (const spec of PARAMS) {
@@ -182,6 +189,7 @@ export function writeControls(state, { except = null } = {}) {
   document.getElementById("lugre").checked = Boolean(state.lugre);
   document.getElementById("present").checked = Boolean(state.present);
   document.body.classList.toggle("present", Boolean(state.present));
+  for (const write of writers) write(state, except);
 }
 
 /** Show each error under its control and mark the control invalid; clear the others. */

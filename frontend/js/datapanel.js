@@ -16,6 +16,7 @@ import {
 import { paramSpec } from "./controls.js";
 import { drawFigure, onSchemeChange } from "./draw.js";
 import { download } from "./export.js";
+import { showFitOutputs, wireFitOutputs } from "./fitoutputs.js";
 import { dataErrorMessage, explorerParams, measuredOverlay } from "./fitparams.js";
 import { fitFigures, formatNumber, modelCaption } from "./fitplots.js";
 import {
@@ -34,6 +35,7 @@ const panel = {
   result: null, // the finished job {id, source, report, series}
   samples: [],
   applyParams: null,
+  explorerS: () => null, // the explorer's s, for a steady report's export
   figures: null, // the shown fit's figures, redrawn when the page's style changes
 };
 
@@ -204,6 +206,7 @@ function clearResults() {
 async function showResults(job) {
   const report = job.report;
   renderSummary(job);
+  showFitOutputs(report, panel.explorerS());
   renderErrorTable(report);
   renderParamTable(report);
   renderSteps(report);
@@ -337,10 +340,14 @@ async function loadSamples() {
 
 /**
  * Wire the panel. `applyParams(values)` sets explorer parameters (a partial state) and
- * returns false when the explorer cannot take them yet.
+ * returns false when the explorer cannot take them yet; `tryInLoop(job, options)` opens
+ * the control loop with the fitted model (fitoutputs.js); `explorerS()` is the
+ * explorer's presliding scale.
  */
-export function initDataPanel({ applyParams }) {
+export function initDataPanel({ applyParams, tryInLoop, explorerS }) {
   panel.applyParams = applyParams;
+  panel.explorerS = explorerS;
+  wireFitOutputs({ fit: () => panel.result, showError, hideError, tryInLoop });
   $("data-file").addEventListener("change", (event) => chooseFile(event.target.files[0]));
   $("data-sample").addEventListener("change", chooseSample);
   $("fit-start").addEventListener("click", startFit);

@@ -7,7 +7,7 @@ import { paramSpec } from "./controls.js";
 import { PLOT_IDS, figures } from "./plots.js";
 import { showPlotInView } from "./phone.js";
 import { redraw } from "./render.js";
-import { exploreBody } from "./state.js";
+import { exploreBody, partDefaults } from "./state.js";
 import { $, app, whenIdle } from "./store.js";
 import {
   TOUR, pinnedTraces, sweepTraces, sweepValues, sweptPlots, tourState, withTraces,
@@ -109,7 +109,7 @@ export function wireLessons(setState) {
     $("tour-step").textContent = `Step ${index + 1} of ${TOUR.length}: ${step.text}`;
     $("tour-next").disabled = index === TOUR.length - 1;
     $("tour-start").textContent = "Restart the tour";
-    setState(tourState(index, app.presets, app.state));
+    setState(tourState(index, app.presets, app.state, partDefaults));
     showPlotInView(step.plot);
     if (step.sweep) runSweep(step.sweep);
     else if (app.sweep) clearSweep();

@@ -3,7 +3,8 @@
 //   store.js        the state and the signals (#plots data-ready, data-frame, …)
 //   render.js       the one render path: state → request → figures → plots
 //   views.js        the registry of views the render path walks
-//   modelviews.js   the four model plots; rampview.js the ramp experiment
+//   modelviews.js   the four model plots; rampview.js the ramp experiment;
+//                   loopview.js the control loop (its controls, state and sentence)
 //   viewrequests.js the views with requests of their own; simulation.js the simulated
 //                   points; lessons.js pin, sweep and tour; inputs.js the controls;
 //                   phone.js the plot in view on a phone
@@ -15,8 +16,12 @@
 import { getJSON } from "./api.js";
 import { PARAMS, buildControls, paramSpec, setParams, writeControls } from "./controls.js";
 import { fitReady, fitReport, initDataPanel } from "./datapanel.js";
+import { explorerParams, measuredOverlay } from "./fitparams.js";
 import { setState, wireControls } from "./inputs.js";
 import { wireLessons } from "./lessons.js";
+import {
+  fittedLoop, initLoop, loopReady, openLoopView,
+} from "./loopview.js";
 import "./modelviews.js";
 import { PALETTE } from "./palette.js";
 import { initPhone } from "./phone.js";
@@ -77,6 +82,25 @@ function applyFitted(values, { ranges = {}, measured = null } = {}) {
   return true;
 }
 
+/** The data panel's "Try this model in a control loop": the fitted model in the plant
+ *  (the loop carried to its scale), or only in the compensator; the loop in view. */
+function tryFittedInLoop(job, { compensatorOnly }) {
+  if (!app.state || !app.defaults) return false;
+  const { values, notes, ranges } = explorerParams(job.report);
+  const loop = fittedLoop(values, compensatorOnly);
+  const applied = compensatorOnly
+    ? applyFitted(loop, { measured: app.measured })
+    : applyFitted({ ...values, ...loop }, { ranges, measured: measuredOverlay(job) });
+  if (!applied) return false;
+  openLoopView();
+  const list = (part) => Object.entries(part).filter(([, v]) => typeof v === "number")
+    .map(([name, value]) => `${name} = ${value}`).join(", ");
+  return compensatorOnly
+    ? `The compensator takes the fitted model (${list(values)}); the plant keeps the sliders.`
+    : `The plant takes the fitted model (${list(values)}) and the loop its scale: ${list(loop)}.`
+      + `${notes.length ? ` Note: ${notes.join("; ")}.` : ""}`;
+}
+
 function fillMenus() {
   const select = $("preset");
   for (const preset of app.presets) {
@@ -96,12 +120,14 @@ function fillMenus() {
 }
 
 async function init() {
-  const response = await getJSON("/api/presets");
+  const [response] = await Promise.all([getJSON("/api/presets"), initLoop()]);
   setParams(response.parameters);
   buildControls(document);
   wireTabs();
   initPhone();
-  initDataPanel({ applyParams: applyFitted });
+  initDataPanel({
+    applyParams: applyFitted, tryInLoop: tryFittedInLoop, explorerS: () => app.state?.s,
+  });
   app.defaults = response.defaults;
   app.presets = response.presets;
   fillMenus();
@@ -128,6 +154,14 @@ window.breakaway = {
     await whenIdle("ready", () => app.busy);
     await whenIdle("views", viewsBusy);
     return app.results.ramp?.value;
+  },
+  /** Resolves once the control loop shows the current state, its sentence complete
+   *  (the variants it quotes run); its answer. */
+  loopReady,
+  /** The plant's parameters and the gains of the loop's answer shown, or null. */
+  loopParams: () => {
+    const shown = app.results.loop?.value;
+    return shown ? { ...shown.params, ...shown.controller } : null;
   },
   /** A copy of the current state. */
   state: () => JSON.parse(JSON.stringify(app.state)),

@@ -24,6 +24,11 @@ export const PALETTE = {
     simulation: "#111111", lugre: "#ff7f00", measured: MEASURED, sweep: SWEEP,
   },
   ramp: { u: "#1f4e99", F: "#e6550d", v: "#555555", e13: "#2ca02c", breakAway: "#111111" },
+  // the control loop's three plots (loopplots.js), in the ramp's inks: u, F, the
+  // break-away ✕ and the E13 value look the same in both
+  loopPosition: { r: "#555555", x: "#1f4e99", breakAway: "#111111" },
+  loopError: { e: "#1f4e99", band: "#555555" },
+  loopForce: { u: "#1f4e99", F: "#e6550d", stick: "#555555", e13: "#2ca02c", breakAway: "#111111" },
   // the data panel's plots
   fitModel: { measured: "#8a9099", base: "#d62728", final: "#1f4e99" },
   fitResidual: { before: "#c9ccd1", after: "#1f4e99" },

@@ -9,18 +9,23 @@ import { $ } from "./store.js";
 const PHONE = window.matchMedia("(max-width: 720px)");
 const MODEL = ["stribeck", "hysteresis", "phase", "breakaway"];
 /** The plots each control moves, the first the one to bring into view; the ramp
- *  experiment follows every parameter. */
+ *  experiment follows every parameter. Views add theirs (plotMovedBy). */
 const PLOTS_OF = {
-  Fc: MODEL, Fs: MODEL,
-  V: ["stribeck", "breakaway"],
-  delta: ["stribeck", "hysteresis", "breakaway"],
-  sigma: ["stribeck", "hysteresis", "breakaway"],
-  k: ["breakaway", "phase"],
-  s: ["hysteresis", "phase", "breakaway"],
-  z_ba: ["breakaway", "phase"],
-  F_hat: ["breakaway", "phase"],
-  m: [],
+  Fc: [...MODEL, "ramp"], Fs: [...MODEL, "ramp"],
+  V: ["stribeck", "breakaway", "ramp"],
+  delta: ["stribeck", "hysteresis", "breakaway", "ramp"],
+  sigma: ["stribeck", "hysteresis", "breakaway", "ramp"],
+  k: ["breakaway", "phase", "ramp"],
+  s: ["hysteresis", "phase", "breakaway", "ramp"],
+  z_ba: ["breakaway", "phase", "ramp"],
+  F_hat: ["breakaway", "phase", "ramp"],
+  m: ["ramp"],
 };
+
+/** Plot `id` moves with the controls `names` (a data-param, or an element's id). */
+export function plotMovedBy(id, names) {
+  for (const name of names) PLOTS_OF[name] = [...(PLOTS_OF[name] ?? []), id];
+}
 
 function track() {
   return document.querySelector(".plot-track");
@@ -31,6 +36,11 @@ function mark(id) {
   for (const button of document.querySelectorAll(".plot-picker button")) {
     button.setAttribute("aria-pressed", String(button.dataset.show === id));
   }
+}
+
+/** True in the phone's layout (the plots stay at the top of the screen). */
+export function onPhone() {
+  return PHONE.matches;
 }
 
 /** Bring plot `id` into view (on a phone). */
@@ -54,7 +64,7 @@ function inView() {
 
 function followControl(event) {
   const name = event.target?.dataset?.param ?? event.target?.id;
-  const plots = name in PLOTS_OF ? [...PLOTS_OF[name], "ramp"] : null;
+  const plots = Object.hasOwn(PLOTS_OF, name) ? PLOTS_OF[name] : null;
   if (!PHONE.matches || !plots) return;
   const current = $("plots").dataset.inView;
   if (!plots.includes(current)) showPlotInView(plots[0], "instant");

@@ -1,6 +1,7 @@
 // The explorer's whole state, and its round trip through the URL's query string.
 // A state is a plain object: the model parameters (numbers, or the text a person typed
-// when it is not a number yet), F_hat, and the toggles `sim`, `lugre` and `present`.
+// when it is not a number yet), F_hat, the toggles `sim`, `lugre` and `present`, and the
+// parts that views keep of their own (registerStatePart).
 
 import { PARAMS, parseNumber } from "./controls.js";
 
@@ -10,11 +11,26 @@ function paramNames() {
 }
 export const TOGGLES = { sim: true, lugre: false, present: false };
 
+/** State that a view keeps of its own (the control loop's gains, say), registered by its
+ *  module before the page starts: {name, defaults() → {key: value}, read(query, state),
+ *  write(state, query)}. A preset keeps it; Reset returns it to its defaults. */
+const parts = [];
+
+export function registerStatePart(part) {
+  parts.push(part);
+}
+
+/** The defaults of the state part `name` ({} when there is none). */
+export function partDefaults(name) {
+  return parts.find((part) => part.name === name)?.defaults() ?? {};
+}
+
 /** A full state from the server's defaults (GET /api/presets → defaults). */
 export function defaultState(defaults) {
   const state = { ...TOGGLES };
   for (const name of paramNames()) state[name] = defaults[name];
   state.F_hat = defaults.F_hat;
+  for (const part of parts) Object.assign(state, part.defaults());
   return state;
 }
 
@@ -22,6 +38,9 @@ export function defaultState(defaults) {
 export function presetState(preset, defaults, current) {
   const state = defaultState({ ...defaults, ...preset.params });
   for (const name of Object.keys(TOGGLES)) state[name] = current[name];
+  for (const part of parts) {
+    for (const name of Object.keys(part.defaults())) state[name] = current[name];
+  }
   return state;
 }
 
@@ -33,6 +52,7 @@ export function toQuery(state) {
   query.set("sim", state.sim ? "1" : "0");
   query.set("lugre", state.lugre ? "1" : "0");
   if (state.present) query.set("present", "1");
+  for (const part of parts) part.write(state, query);
   return `?${query.toString()}`;
 }
 
@@ -50,6 +70,7 @@ export function fromQuery(search, defaults) {
   for (const name of Object.keys(TOGGLES)) {
     if (query.has(name)) state[name] = query.get(name) === "1";
   }
+  for (const part of parts) part.read(query, state);
   return state;
 }
 

@@ -130,11 +130,23 @@ export const TOUR = [
   { preset: "viscous", set: { k: 10 }, plot: "breakaway",
     text: "With viscous friction σ the break-away curve dips and then rises again at high "
       + "rates: σ·ẋ* grows linearly with k." },
+  { preset: "fig5", set: { k: 4 }, reset: "loop", plot: "loop",
+    text: "The control loop (MODEL.md §5b): a PID position loop on the same friction hunts. "
+      + "While the body sticks, the integral term ramps u as in the ramp experiment until it "
+      + "breaks away (✕; E13 ◆ says where); sliding, friction falls from Fs towards Fc and the "
+      + "body overshoots. The sentence under the plots gives the numbers." },
+  { preset: "no-stribeck", set: { k: 4 }, reset: "loop", plot: "loop",
+    text: "The same loop with Fs = Fc: friction no longer falls once the body slides, so "
+      + "nothing overshoots and the loop settles. Move Ki and Kd, try a sine and compensation: "
+      + "the sentence says what each changes." },
 ];
 
-/** The state of tour step `index`, from the presets and the current state. */
-export function tourState(index, presets, state) {
+/** The state of tour step `index`, from the presets and the current state; a step that
+ *  resets a view's part of the state takes `partDefaults(name)` (state.js). */
+export function tourState(index, presets, state, partDefaults = () => ({})) {
   const step = TOUR[index];
   const preset = presets.find((p) => p.name === step.preset);
-  return { ...state, ...(preset ? preset.params : {}), ...step.set };
+  return {
+    ...state, ...(step.reset ? partDefaults(step.reset) : {}), ...(preset ? preset.params : {}), ...step.set,
+  };
 }

@@ -34,8 +34,9 @@ function keep(map, name, value) {
 }
 
 function run(id) {
-  // flying: request number -> {controller, key}; shown: the number of the answer shown
-  runs[id] ??= { timer: null, flying: new Map(), count: 0, shown: 0, again: false, frames: 0 };
+  // flying: request number -> {controller, key}; shown: the number of the answer shown;
+  // drawn: the key of the answer last drawn
+  runs[id] ??= { timer: null, flying: new Map(), count: 0, shown: 0, again: false, frames: 0, drawn: null };
   return runs[id];
 }
 
@@ -123,8 +124,10 @@ function askLive(view) {
   entry.timer = null;
   const key = keyOf(view, app.state);
   entry.again = false;
-  if (app.results[view.id]?.key === key) drawView(view.id);
-  else if (flying(entry, key)) return;
+  if (app.results[view.id]?.key === key) {
+    // a change this view does not depend on (the loop's gains for the ramp) draws nothing
+    if (entry.drawn !== key) drawView(view.id);
+  } else if (flying(entry, key)) return;
   else if (entry.flying.size < LIVE_FLYING) ask(view, app.state, { live: true });
   else entry.again = true;
 }
@@ -151,11 +154,12 @@ function schedule(view) {
 }
 
 /** Ask ahead, at low priority, for the answers of `states` (a key press away) that only
- *  the views' requests can draw (their model curves are the ones shown). */
+ *  the views' requests can draw (their model curves are the ones shown), or that a view
+ *  drawn live at every change (request.live) draws. */
 export function prefetchViews(states) {
   for (const view of requestViews()) {
     for (const state of states) {
-      if (JSON.stringify(exploreBody(state)) !== app.frameKey) continue;
+      if (JSON.stringify(exploreBody(state)) !== app.frameKey && !view.request.live?.(state)) continue;
       const key = keyOf(view, state);
       const name = `${view.id} ${key}`;
       if (answers.has(name) || ahead.has(name)) continue;
@@ -172,10 +176,18 @@ export function drawView(id, { now = false } = {}) {
   const view = viewOf(id);
   const result = app.results[id];
   if (!result || !app.frame) return Promise.resolve();
+  run(id).drawn = result.key;
   view.onDraw?.(result.value, app.state);
-  const figure = view.figure({ frame: app.frame, state: app.state, result: result.value });
-  const settled = () => Promise.all([showPlot(id, figure), redraw(view.redraws ?? [])]);
-  if (now && drawLiveNow(id, figure, view.redraws ?? [])) {
+  const ctx = { frame: app.frame, state: app.state, result: result.value };
+  // a view may draw several plots from one answer: figures(ctx) → {plot id: figure}
+  const shown = view.figures ? view.figures(ctx) : { [id]: view.figure(ctx) };
+  const settled = () => Promise.all([
+    ...Object.entries(shown).map(([plot, figure]) => showPlot(plot, figure)),
+    redraw(view.redraws ?? [])]);
+  // first on the live canvases at once, then Plotly in a task of its own
+  const plots = Object.entries(shown);
+  if (now && plots.map(([plot, figure], i) => drawLiveNow(plot, figure,
+    i === 0 ? view.redraws ?? [] : [])).every(Boolean)) {
     return new Promise((resolve) => { setTimeout(() => settled().then(resolve, resolve)); });
   }
   return settled();
@@ -185,7 +197,8 @@ export function drawView(id, { now = false } = {}) {
 // once its frame is settled); when the curves stay, the views are what moved
 onStateLeft(({ frameChanged }) => {
   for (const view of requestViews()) {
-    if (frameChanged) cancel(view); else askLive(view);
+    // a view quick enough to answer (request.live(state) true) follows every change live
+    if (frameChanged && !view.request.live?.(app.state)) cancel(view); else askLive(view);
   }
 });
 onFrameDrawn(() => requestViews().forEach(schedule));

@@ -9,6 +9,10 @@
 //            "request": drawn from the answer of its own request, `request` =
 //            {url, body(state) → JSON body, debounceMs}, asked for once the frame of a
 //            state is drawn, the previous one aborted (viewrequests.js);
+//            `request.live(state)` true: asked for live at every change of a valid
+//            state, not only when the model's curves stay (a quick answer: the loop);
+//   figures  instead of figure, for a view that draws several plots from one answer:
+//            ctx → {plot id: figure} (the control loop's three plots);
 //   redraws  frame views whose figure shows this view's answer too (e.g. the ramp's
 //            simulated path over the phase family), redrawn when it arrives.
 // Overlays add traces to the figures of other views (pinned curves, a sweep, measured

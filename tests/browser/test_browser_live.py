@@ -152,17 +152,21 @@ def test_layout_at_1280_by_800(explorer):
     explorer.open("?sim=0")
     layout = _layout(explorer.page)
     assert layout["scrollWidth"] <= layout["innerWidth"]
-    assert len(layout["plots"]) == 5
+    assert len(layout["plots"]) == 8
     for plot in layout["plots"]:
-        assert plot["width"] >= 350 and plot["height"] >= 240
+        assert plot["width"] >= 350 and plot["height"] >= 180
         assert 0 <= plot["left"] and plot["right"] <= 1280
     # the four model plots sit in two columns beside the controls, the ramp below them
-    # across both
-    four, ramp = layout["plots"][:4], layout["plots"][4]
+    # across both, and below it the control loop's three, stacked on one time axis
+    four, ramp, loop = layout["plots"][:4], layout["plots"][4], layout["plots"][5:]
+    assert all(plot["height"] >= 240 for plot in four + [ramp])
     assert len({round(plot["left"]) for plot in four}) == 2
     assert layout["controls"]["right"] <= min(plot["left"] for plot in layout["plots"])
     assert ramp["top"] >= max(plot["top"] + plot["height"] for plot in four)
     assert ramp["width"] >= 1.9 * four[0]["width"]
+    assert loop[0]["top"] >= ramp["top"] + ramp["height"]
+    assert all(plot["width"] == ramp["width"] and plot["left"] == ramp["left"] for plot in loop)
+    assert loop[0]["top"] < loop[1]["top"] < loop[2]["top"]
     # what comes below the plots stays clear of the sticky controls, scrolled to
     for selector in ("#glossary summary", "#data-panel"):
         element = explorer.page.locator(selector)

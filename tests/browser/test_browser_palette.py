@@ -77,7 +77,8 @@ def test_every_group_of_the_palette_keeps_its_colours_apart(explorer):
     groups, dark = explorer.page.evaluate("""async () => {
         const { PALETTE, DARK_INK } = await import('/js/palette.js');
         return [PALETTE, DARK_INK]; }""")
-    assert set(groups) >= {"stribeck", "hysteresis", "phase", "breakaway", "ramp"}
+    assert set(groups) >= {"stribeck", "hysteresis", "phase", "breakaway", "ramp",
+                           "loopPosition", "loopError", "loopForce"}
     for name, group in groups.items():
         colors = [c for value in group.values() for c in (value if isinstance(value, list) else [value])]
         assert too_close(colors) == [], f"{name}, light"
@@ -104,7 +105,7 @@ def trace_colors(page) -> dict[str, list[str]]:
 def test_the_plots_as_drawn_keep_their_colours_apart(explorer, scheme):
     # everything on at once: simulated points, LuGre, pinned curves and a sweep
     explorer.page.emulate_media(color_scheme=scheme)
-    explorer.open("?sim=1&lugre=1")
+    explorer.open("?sim=1&lugre=1&limit=1&u_max=1.2")  # the loop hunts: every mark drawn
     page = explorer.page
     page.get_by_role("button", name="Pin these curves").click()
     page.get_by_label("Sweep", exact=True).select_option("Fs")
@@ -113,8 +114,11 @@ def test_the_plots_as_drawn_keep_their_colours_apart(explorer, scheme):
     explorer.sim_ready()
     page.evaluate("window.breakaway.rampReady()")
     until(page, "document.getElementById('plot-breakaway').data.some((t) => t.name.startsWith('LuGre'))")
+    page.evaluate("window.breakaway.loopReady()")
     drawn = trace_colors(page)
-    assert set(drawn) == {"stribeck", "hysteresis", "phase", "breakaway", "ramp"}
+    assert set(drawn) == {"stribeck", "hysteresis", "phase", "breakaway", "ramp",
+                          "loop-position", "loop-error", "loop-force"}
+    assert len(set(drawn["loop-force"])) == 5  # u, F, the stick ramps, u_ba and E13
     assert len(set(drawn["breakaway"])) >= 12  # four F̂, current, simulation, LuGre, five swept
     for plot, colors in drawn.items():
         assert too_close(colors) == [], plot

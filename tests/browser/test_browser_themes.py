@@ -6,7 +6,8 @@ import pytest
 
 pytestmark = pytest.mark.browser
 
-PLOTS = ("stribeck", "hysteresis", "phase", "breakaway", "ramp")
+PLOTS = ("stribeck", "hysteresis", "phase", "breakaway", "ramp", "loop-position", "loop-error",
+         "loop-force")
 
 
 def layout(explorer, plot: str, path: str):
@@ -16,6 +17,7 @@ def layout(explorer, plot: str, path: str):
 
 def test_presentation_mode_from_the_url_and_the_toggle(explorer):
     explorer.open("?sim=0&present=1")
+    explorer.page.evaluate("window.breakaway.loopReady()")
     for plot in PLOTS:
         assert layout(explorer, plot, "xaxis.tickfont.size") >= 18, plot
         assert layout(explorer, plot, "yaxis.tickfont.size") >= 18, plot
@@ -112,12 +114,14 @@ def test_the_break_away_curves_differ_by_more_than_red_and_green(explorer):
 def test_every_tooltip_names_its_units(explorer):
     explorer.open("?sim=1")
     explorer.sim_ready()
+    explorer.page.evaluate("window.breakaway.loopReady()")
     templates = explorer.page.evaluate(
-        """() => ['stribeck', 'hysteresis', 'phase', 'breakaway', 'ramp'].flatMap((id) =>
+        """() => ['stribeck', 'hysteresis', 'phase', 'breakaway', 'ramp', 'loop-position',
+                  'loop-error', 'loop-force'].flatMap((id) =>
              document.getElementById('plot-' + id).data
                .filter((t) => t.hoverinfo !== 'skip')
                .map((t) => [id, t.name, t.hovertemplate || null]))""")
-    assert len(templates) >= 14
+    assert len(templates) >= 14 + 7
     for plot, name, template in templates:
         assert template, f"{plot}: {name} has Plotly's default tooltip"
         assert any(unit in template for unit in (" N", " m/s", " m<", " s<", " N/s")), (plot, name)
