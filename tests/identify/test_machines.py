@@ -27,10 +27,6 @@ SEEDS = (0, 1)
 KNOWN_GAPS = {
     ("servo-axis", 0): "residual_structure leads with x (0.10) before x - x_r: this servo "
                        "turns at the ends of its travel, where the presliding misfit sits",
-    ("degrees-ramp", 1): "Fs 0.525 (truth 0.443) is reported determined (± 0.04): a presliding "
-                         "reach of 3.6 counts and the plant's presliding damping bias it",
-    ("degrees-steps", 0): "Fs 0.296 (truth 0.242) is reported determined (± 0.03), as above",
-    ("degrees-controller", 1): "Fs 0.397 (truth 0.443) is reported determined (± 0.009), as above",
 }
 
 

@@ -10,6 +10,8 @@ the warning gives the bound the data do set.
 - The Stribeck drop of V and δ lies entirely below the slowest speed at which the data
   show the curve (then Fs is an extrapolation too) or above the fastest (then Fc is);
   or there is no drop: Fs sits on Fs = Fc, and V, δ describe nothing.
+- The drop's shape δ is not determined: the peak Fs at rest is an extrapolation
+  through that shape, and V with it.
 """
 
 from __future__ import annotations
@@ -27,6 +29,9 @@ DROP_SEEN = (0.1, 0.9)
 ABOVE_SHARE = 0.05
 #: ... and by this many noise floors.
 ABOVE_NOISE = 3.0
+#: The peak Fs is an extrapolation through the drop's shape: with δ's relative standard
+#: error above this, the peak and V are not determined.
+SHAPE_RELATIVE_ERROR = 0.5
 #: The levels of each direction and the parameters of their drop.
 LEVELS = (("Fc", "Fs"), ("Fc_neg", "Fs_neg"))
 
@@ -35,6 +40,21 @@ def _drop_speeds(V: float, delta: float) -> tuple[float, float]:
     """Speeds [m/s] where the Stribeck term exp(−(v/V)^δ) has fallen to 0.9 and 0.1."""
     high, low = DROP_SEEN[1], DROP_SEEN[0]
     return V * (-math.log(high)) ** (1 / delta), V * (-math.log(low)) ** (1 / delta)
+
+
+def _shape_unknown(fit: FitResult) -> str | None:
+    """How δ is not determined, where it is not (a relative standard error above
+    :data:`SHAPE_RELATIVE_ERROR` counts: the peak extrapolates through the shape)."""
+    a = fit.assessment
+    value = fit.params.get("delta")
+    if value is None or a.why.get("delta") == "fixed":
+        return None
+    se = a.stderr.get("delta")
+    if a.why.get("delta") is not None or se is None:
+        return f"δ = {value:.3g}, not determined"
+    if se > SHAPE_RELATIVE_ERROR * abs(value):
+        return f"δ = {value:.3g} ± {se:.2g}"
+    return None
 
 
 def beyond_data(fit: FitResult, noise: float) -> dict[str, str]:
@@ -86,6 +106,14 @@ def beyond_data(fit: FitResult, noise: float) -> dict[str, str]:
                 f"describe a drop that is not there"))
             continue
         begins, ends = _drop_speeds(p["V"], p["delta"])
+        shape = _shape_unknown(fit)
+        if shape:
+            held_at = Fc + (Fs - Fc) * math.exp(-(slowest / p["V"]) ** p["delta"])
+            add((level, "V"), (
+                f"the shape of the Stribeck drop is not determined ({shape}), so neither is "
+                f"the peak {level} it extrapolates to at rest nor where it falls (V); the "
+                f"friction at the slowest sliding speed, {held_at:.4g} {unit}, is a lower "
+                f"bound on {level}"))
         if ends < slowest:
             add((level, "V", "delta"), (
                 f"the Stribeck drop of V = {p['V']:.3g} and δ = {p['delta']:.3g} is over by "
