@@ -14,7 +14,7 @@ Printed: explore requests, errors, p50/p99 latency; health worst and p99; fits d
 same load is run against the server as it was, with the fits in the server's own
 threads, by ``--fits-in-threads`` (the obvious alternative: no worker processes); the
 two figures are printed together. Targets: explore p50 ≤ 50 ms, p99 ≤ 250 ms, health
-≤ 500 ms, 0 errors. The client is asyncio in this process; on this 2-core machine it
+≤ 250 ms at the worst, 0 errors. The client is asyncio in this process; on this 2-core machine it
 shares the CPU with the server, as a real lecture hall's clients would not.
 """
 
@@ -37,7 +37,7 @@ import orjson
 from bench_explorer import free_port, load_average, machine, pct, slider_bodies
 
 ROOT = Path(__file__).resolve().parents[1]
-TARGETS = {"p50_ms": 50, "p99_ms": 250, "health_ms": 500}
+TARGETS = {"p50_ms": 50, "p99_ms": 250, "health_ms": 250}
 
 
 def recording() -> bytes:

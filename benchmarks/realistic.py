@@ -5,7 +5,7 @@ Every family of ``tests/identify/machines.py`` (a servo axis under a torque comm
 joint friction curves, presliding records, stick-slip creep, encoder counts logged in
 degrees, and machine-like versions of issue 9's classes) is generated for a few seeds,
 written as CSV, parsed and identified exactly as ``breakaway fit FILE`` does, and
-checked by the tests' own :func:`~tests.identify.expectations.failures`. The table
+checked by the tests' own :func:`~identify.expectations.failures`. The table
 prints the expected effects and warnings, the reported effects, the key warnings, the
 parameters the report determines beside the truth, and the seconds of each fit; below
 it, each miss. The obvious alternative (the engine's own seeded sets from
@@ -23,11 +23,13 @@ import sys
 import time
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+# imported as pytest imports them (package ``identify`` under tests/), so that the
+# plant's numba cache, keyed by module name, serves both
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 
 from breakaway.identify import identify, parse_csv  # noqa: E402
-from tests.identify.expectations import failures  # noqa: E402
-from tests.identify.machines import families  # noqa: E402
+from identify.expectations import failures  # noqa: E402
+from identify.machines import families  # noqa: E402
 
 #: Warning codes the table shows (the others are in the reports).
 KEY_WARNINGS = ("quantised", "force-is-command", "one-direction", "single-rate", "beyond-data",

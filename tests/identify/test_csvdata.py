@@ -637,3 +637,13 @@ def test_units_in_the_header_are_stripped_and_rotary_ones_recorded():
     assert data.meta["units"] == "rotary"
     linear = parse_csv("t (s),x [m],F [N]\n" + rows)
     assert "units" not in linear.meta
+
+
+def test_positions_in_degrees_put_every_angle_in_degrees():
+    rows = "".join(f"{i * 0.001},{i * 1e-2},{1 + i}\n" for i in range(12))
+    data = parse_csv("t [s],x [deg],F [N·m]\n" + rows)
+    assert data.meta["units"] == "rotary" and data.angle == "deg"
+    assert [data.unit(u) for u in ("N", "m", "m/s", "1/m", "kg", "N·s/m")] == [
+        "N·m", "deg", "deg/s", "1/deg", "N·m·s²/deg", "N·m·s/deg"]
+    in_radians = parse_csv("t [s],x [rad],F [N·m]\n" + rows)
+    assert in_radians.angle == "rad" and in_radians.unit("kg") == "kg·m²"

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import gc
 from contextlib import asynccontextmanager
 from typing import AsyncIterator
 
@@ -12,6 +13,7 @@ from fastapi.staticfiles import StaticFiles
 from starlette.exceptions import HTTPException as StarletteHTTPException
 
 from .. import __version__
+from ..frame import explore_frame
 from ..settings import get_settings
 from .contract import api_fallback, documented
 from .errors import http_error_handler, request_validation_handler
@@ -40,6 +42,13 @@ ROUTERS: list[APIRouter] = [
 @asynccontextmanager
 async def lifespan(app: FastAPI) -> AsyncIterator[None]:
     app.state.simulations.warm_up()  # start the worker now, not on the first click
+    # The first frame pays for lazy imports and loading the compiled kernels (~0.25 s):
+    # paid here, before the port opens, not by the first class that drags a slider
+    # while every request behind it waits (health then took 300 ms; bench_lecture.py).
+    explore_frame()
+    # what start-up made lives as long as the server: out of the collector's full
+    # passes, which then walk only what requests create
+    gc.freeze()
     app.state.fit_workers.store.abandon_orphans()  # fits a restart interrupted
     try:
         yield

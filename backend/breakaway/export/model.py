@@ -103,7 +103,7 @@ def _number(value, path) -> float:
 def _units(report: dict) -> dict[str, str]:
     given = report.get("units")
     given = given if isinstance(given, dict) else {}
-    rotary = given.get("x") == "rad" or given.get("F") == "N·m"
+    rotary = given.get("x") in ("rad", "deg") or given.get("F") == "N·m"
     units = {key: unit_of(unit, rotary) for key, unit in _SI_UNITS.items()}
     units.update({key: value for key, value in given.items()
                   if key in units and isinstance(value, str)})

@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 
 from .diagnosis import Diagnosis
-from .effects import param_spec, unit_of
+from .effects import param_spec
 from .fitting import FitResult
 
 
@@ -18,10 +18,9 @@ def _clean(value):
 
 def units(data) -> dict[str, str]:
     """Units of the data's columns and of every parameter key, linear or rotary."""
-    rotary = data.rotary
     columns = {"F": "N", "F_ba": "N", "x": "m", "v": "m/s", "t": "s", "k": "N/s",
                "dwell": "s", "a": "m/s²"}
-    return {name: unit_of(u, rotary) for name, u in columns.items()}
+    return {name: data.unit(u) for name, u in columns.items()}
 
 
 def model_entry(fit: FitResult) -> dict:
@@ -34,8 +33,7 @@ def model_entry(fit: FitResult) -> dict:
 
 def parameter_units(data, names, effects=()) -> dict[str, str]:
     """Units of the parameter keys ``names`` of a model with ``effects``."""
-    rotary = data.rotary
-    return {name: unit_of(param_spec(name, effects).unit, rotary) for name in names}
+    return {name: data.unit(param_spec(name, effects).unit) for name in names}
 
 
 def report(diagnosis: Diagnosis) -> dict:

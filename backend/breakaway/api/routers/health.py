@@ -11,5 +11,7 @@ router = APIRouter(prefix="/api", tags=["health"])
 
 
 @router.get("/health", response_model=Health)
-def health() -> Health:
+async def health() -> Health:
+    """``async`` on purpose: answered on the event loop between two explorer frames, never
+    queued behind the thread pool's work."""
     return Health(status="ok", version=__version__, worker=os.getpid())

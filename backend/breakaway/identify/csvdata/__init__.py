@@ -87,9 +87,11 @@ def parse_csv(data: bytes | str, kind: str | None = None, max_bytes: int = DEFAU
     # -- metadata and header
     meta, meta_lines, header_idx = _read_meta_and_header(lines)
     header_line = header_idx + 1
-    header, rotary = _strip_units(_split(lines[header_idx].strip()))
+    header, rotary, angle = _strip_units(_split(lines[header_idx].strip()))
     if rotary and "units" not in meta:
         meta["units"] = "rotary"  # N·m and rad in the header: label reports that way
+    if angle and "angle" not in meta:
+        meta["angle"] = angle  # x [deg]: V, s and m_e are per degree
 
     # -- kind
     if kind is not None and str(kind).strip():

@@ -86,6 +86,20 @@ class DataError(ValueError):
 _ROTARY_UNIT = {"N·s/m": "N·m·s/rad", "m/s": "rad/s", "1/m": "1/rad", "kg": "kg·m²",
                 "N": "N·m", "m": "rad", "m/s²": "rad/s²", "N/s": "N·m/s",
                 "N·(s/m)^n": "N·m·(s/rad)^n"}
+#: Angles the header may give positions in (``x [deg]``); every unit with an angle in it
+#: follows (V in deg/s, s in 1/deg, m_e in N·m·s²/deg).
+ANGLES = {"rad": "rad", "deg": "deg", "degree": "deg", "degrees": "deg", "°": "deg"}
+
+
+def unit_of(linear: str, rotary: bool, angle: str = "rad") -> str:
+    """The unit of a quantity for linear or rotary data given its linear (SI) unit
+    (N → N·m, m → rad, …), with positions in ``angle`` (``"rad"`` or ``"deg"``)."""
+    if not rotary:
+        return linear
+    unit = _ROTARY_UNIT.get(linear, linear)
+    if angle == "rad":
+        return unit
+    return "N·m·s²/deg" if unit == "kg·m²" else unit.replace("rad", angle)
 
 
 @dataclass(frozen=True, eq=False)
@@ -131,9 +145,15 @@ class Dataset:
         column headers, recorded by the parser as the same metadata)."""
         return self.meta.get("units", "").strip().lower() == "rotary"
 
+    @property
+    def angle(self) -> str:
+        """The angle rotary positions are in: ``"deg"`` when the header says so
+        (``x [deg]``, recorded by the parser as ``# angle: deg``), else ``"rad"``."""
+        return ANGLES.get(self.meta.get("angle", "rad").strip().lower(), "rad")
+
     def unit(self, linear: str) -> str:
         """The unit of a quantity of these data given its linear unit (N → N·m, …)."""
-        return _ROTARY_UNIT.get(linear, linear) if self.rotary else linear
+        return unit_of(linear, self.rotary, self.angle)
 
     def meta_float(self, key: str, default: float | None = None) -> float | None:
         """Numeric value of a metadata line.

@@ -9,7 +9,7 @@ import numpy as np
 
 from ...params import MAGNITUDE
 
-from .dataset import _EXPECTED, _BOM, KINDS, REQUIRED, DataError
+from .dataset import _EXPECTED, _BOM, ANGLES, KINDS, REQUIRED, DataError
 
 
 
@@ -208,18 +208,21 @@ _ROTARY_UNITS = {"rad", "rad/s", "n·m", "nm", "n*m", "n.m", "n m", "n·m/s", "n
 
 
 def _strip_units(header):
-    """Header names without a trailing unit (``F [N·m]``, ``x (rad)``) and whether any
-    of those units is rotary."""
-    names, rotary = [], False
+    """Header names without a trailing unit (``F [N·m]``, ``x (rad)``), whether any of
+    those units is rotary, and the angle x is in (``"deg"`` for ``x [deg]``, else None)."""
+    names, rotary, angle = [], False, None
     for cell in header:
         name, unit = cell, ""
         for open_, close in (("[", "]"), ("(", ")")):
             if cell.endswith(close) and open_ in cell:
                 name, unit = cell[: cell.rindex(open_)].strip(), cell[cell.rindex(open_) + 1:-1]
                 break
-        rotary |= unit.strip().lower() in _ROTARY_UNITS
+        unit = unit.strip().lower()
+        rotary |= unit in _ROTARY_UNITS or unit in ANGLES
+        if name.strip().lower() == "x" and unit in ANGLES:
+            angle = ANGLES[unit]
         names.append(name)
-    return names, rotary
+    return names, rotary, angle
 
 
 # --------------------------------------------------------------------------- validation

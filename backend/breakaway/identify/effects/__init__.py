@@ -30,8 +30,8 @@ from .base import (
     MIN_RIPPLE_PERIODS,
     Effect,
     Param,
-    unit_of,
 )
+from ..csvdata.dataset import unit_of
 from .detection import Detection, viscous_equivalent_of_detection
 from .drift import Drift
 from .dwell import Dwell

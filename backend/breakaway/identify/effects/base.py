@@ -9,7 +9,6 @@ from typing import Callable
 
 import numpy as np
 
-from ..csvdata.dataset import _ROTARY_UNIT
 
 #: The break-away kind's fixed reading of E13 (MODEL.md §6): F̂ = avg at z* = 0.95.
 BREAKAWAY_Z = 0.95
@@ -35,7 +34,7 @@ class Param:
     name : str
         The report's key.
     unit : str
-        SI unit for linear motion (N, m); :func:`unit_of` turns it rotary.
+        SI unit for linear motion (N, m); :func:`~breakaway.identify.csvdata.dataset.unit_of` turns it rotary.
     bounds : callable
         ``bounds(scales) -> (lo, hi)`` in the parameter's own units.
     log : bool
@@ -71,11 +70,6 @@ BASE_PARAMS: dict[str, Param] = {p.name: p for p in (
     Param("s", "1/m", lambda sc: (1e-2 / sc.travel, max(1e3 / sc.step, 1e2 / sc.travel)),
           log=True),
 )}
-
-
-def unit_of(unit: str, rotary: bool) -> str:
-    """The unit of a quantity for linear or rotary data (N → N·m, m → rad, …)."""
-    return _ROTARY_UNIT.get(unit, unit) if rotary else unit
 
 
 # ---------------------------------------------------------------------------------

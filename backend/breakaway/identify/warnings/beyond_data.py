@@ -109,7 +109,7 @@ def beyond_data(fit: FitResult, noise: float) -> dict[str, str]:
         shape = _shape_unknown(fit)
         if shape:
             held_at = Fc + (Fs - Fc) * math.exp(-(slowest / p["V"]) ** p["delta"])
-            add((level, "V"), (
+            add((level, "V", "delta"), (
                 f"the shape of the Stribeck drop is not determined ({shape}), so neither is "
                 f"the peak {level} it extrapolates to at rest nor where it falls (V); the "
                 f"friction at the slowest sliding speed, {held_at:.4g} {unit}, is a lower "

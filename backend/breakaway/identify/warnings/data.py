@@ -20,13 +20,14 @@ def data_warnings(problem, noise: NoiseFloor) -> list[dict]:
 
 def _quantised(problem, noise: NoiseFloor) -> list[dict]:
     out = []
-    unit = problem.data.unit("N")
+    unit, length = problem.data.unit("N"), problem.data.unit("m")
     q_x = getattr(problem, "quantum_x", 0.0)
     if q_x > 0:
         part = (f"; through the model they add {noise.from_x:.3g} {unit} to the noise floor"
                 if noise.from_x > 0 else "")
         out.append(warning("quantised", "x", (
-            f"x takes steps of {q_x:.4g}: direction changes of up to {problem.hysteresis:.4g} "
+            f"x takes steps of {q_x:.4g} {length}: direction changes of up to "
+            f"{problem.hysteresis:.4g} {length} "
             f"(3 steps) are not reversals, and v is taken over a window of several "
             f"samples{part}")))
     if noise.quantum_F > 0:
