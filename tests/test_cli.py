@@ -79,6 +79,18 @@ def test_text_report_lists_warnings_and_undetermined_parameters(tmp_path, capsys
     assert "candidates not accepted:" in out
 
 
+def test_a_sentence_said_of_several_parameters_is_printed_once_naming_them():
+    from breakaway.identify.text import _grouped
+
+    warnings = [{"code": "beyond-data", "parameter": "V", "message": "the drop is unknown"},
+                {"code": "beyond-data", "parameter": "delta", "message": "the drop is unknown"},
+                {"code": "beyond-data", "parameter": "Fs", "message": "Fs is above"},
+                {"code": "quantised", "parameter": "x", "message": "the drop is unknown"}]
+    assert _grouped(warnings) == [("beyond-data", "the drop is unknown", ["V", "delta"]),
+                                  ("beyond-data", "Fs is above", ["Fs"]),
+                                  ("quantised", "the drop is unknown", ["x"])]
+
+
 def test_several_files_give_one_summary_row_each(tmp_path, capsys):
     import csv
 

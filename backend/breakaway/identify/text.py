@@ -3,6 +3,16 @@
 from __future__ import annotations
 
 
+def _grouped(warnings):
+    """The warnings with one sentence said once, with every parameter it is said of (the
+    report keeps one warning per parameter)."""
+    groups: dict[tuple[str, str], list[str]] = {}
+    for w in warnings:
+        groups.setdefault((w["code"], w["message"]), []).append(w.get("parameter") or "")
+    return [(code, message, [p for p in parameters if p])
+            for (code, message), parameters in groups.items()]
+
+
 def _value(value, stderr, determined, unit):
     if value is None:
         return "n/a"
@@ -75,8 +85,9 @@ def format_report(report: dict, source: str | None = None) -> str:
     if report.get("warnings"):
         lines.append("")
         lines.append("warnings:")
-        for w in report["warnings"]:
-            lines.append(f"  [{w['code']}] {w['message']}")
+        for code, message, parameters in _grouped(report["warnings"]):
+            named = f" ({', '.join(parameters)})" if len(parameters) > 1 else ""
+            lines.append(f"  [{code}]{named} {message}")
     rejected = {e: c for e, c in report.get("candidates", {}).items() if not c["accepted"]}
     if rejected:
         lines.append("")

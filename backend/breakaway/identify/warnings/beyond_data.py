@@ -42,6 +42,12 @@ def _drop_speeds(V: float, delta: float) -> tuple[float, float]:
     return V * (-math.log(high)) ** (1 / delta), V * (-math.log(low)) ** (1 / delta)
 
 
+#: How δ came out not determined (``Assessment.why``), in words.
+_WHY = {"at-bound": "at the bound of its range", "flat": "on which the fit does not depend",
+        "artefact": "with a standard error too small to be real",
+        "relative": "with a standard error larger than itself"}
+
+
 def _shape_unknown(fit: FitResult) -> str | None:
     """How δ is not determined, where it is not (a relative standard error above
     :data:`SHAPE_RELATIVE_ERROR` counts: the peak extrapolates through the shape)."""
@@ -50,8 +56,11 @@ def _shape_unknown(fit: FitResult) -> str | None:
     if value is None or a.why.get("delta") == "fixed":
         return None
     se = a.stderr.get("delta")
-    if a.why.get("delta") is not None or se is None:
-        return f"δ = {value:.3g}, not determined"
+    why = a.why.get("delta")
+    if why is not None or se is None:
+        if (why or "").startswith("correlated:"):
+            return f"δ = {value:.3g}, tied to {why.split(':', 1)[1]}"
+        return f"δ = {value:.3g}, {_WHY.get(why, 'without a standard error')}"
     if se > SHAPE_RELATIVE_ERROR * abs(value):
         return f"δ = {value:.3g} ± {se:.2g}"
     return None
@@ -111,7 +120,7 @@ def beyond_data(fit: FitResult, noise: float) -> dict[str, str]:
             held_at = Fc + (Fs - Fc) * math.exp(-(slowest / p["V"]) ** p["delta"])
             add((level, "V", "delta"), (
                 f"the shape of the Stribeck drop is not determined ({shape}), so neither is "
-                f"the peak {level} it extrapolates to at rest nor where it falls (V); the "
+                f"where it falls (V) nor the peak {level} it extrapolates to at rest; the "
                 f"friction at the slowest sliding speed, {held_at:.4g} {unit}, is a lower "
                 f"bound on {level}"))
         if ends < slowest:
