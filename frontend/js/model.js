@@ -180,6 +180,12 @@ export function hysteresisLoop(p, amplitude = GRID.loopAmplitude, n = GRID.loop)
   return { x, F };
 }
 
+/** The quasi-static break-away force F_ba(k) = Fss(ẋ(z*)) of (E13) [N] with F̂ = `fHat`
+ *  (quasistatic.breakaway_force). */
+export function breakawayForce(k, p, fHat = p.F_hat) {
+  return steadyForce(e12Velocity(e12Work(p.z_ba, k, p.s), p, fHat), p);
+}
+
 /**
  * Every curve of one explorer redraw for the parameters `p` ({Fc, Fs, V, delta, sigma,
  * s, z_ba, k, F_hat}, numbers already valid): the shape of the /api/explore answer.
@@ -194,7 +200,7 @@ export function modelFrame(p) {
   const kGrid = linspace(GRID.kMin, GRID.kMax, GRID.breakaway);
   const breakaway = { k: kGrid };
   for (const fHat of ["Fc", "Fs", "avg", "self"]) {
-    breakaway[fHat] = kGrid.map((k) => steadyForce(e12Velocity(e12Work(p.z_ba, k, p.s), p, fHat), p));
+    breakaway[fHat] = kGrid.map((k) => breakawayForce(k, p, fHat));
   }
   return {
     stribeck: { v, F: v.map((vi) => steadyForce(vi, p)) },

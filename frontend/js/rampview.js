@@ -1,8 +1,10 @@
-// The ramp experiment at the current k as a view with its own request (POST /api/ramp):
+// The ramp experiment at the current k as a view with its own request (POST /api/ramp),
+// computed in the page when the run is short (rampmodel.js, the server's integrator):
 // its plot, the simulated path over the phase family, the sentence that explains the
 // numbers, and Play, which moves a time cursor through both plots.
 
 import { explainBreakaway, rampBody, rampFigure, simulationPhaseTrace } from "./ramp.js";
+import { rampExperiment } from "./rampmodel.js";
 import { $, app } from "./store.js";
 import { drawView, viewResult } from "./viewrequests.js";
 import { registerOverlay, registerView } from "./views.js";
@@ -14,7 +16,8 @@ registerView({
   id: "ramp",
   source: "request",
   axes: { x: "t [s]", y: "u, F [N]" },
-  request: { url: "/api/ramp", body: rampBody, debounceMs: RAMP_DEBOUNCE_MS },
+  request: { url: "/api/ramp", body: rampBody, debounceMs: RAMP_DEBOUNCE_MS,
+    local: (body) => rampExperiment(body) },
   redraws: ["phase"],
   figure: ({ state, result }) => rampFigure(result, state, app.cursor),
   onResult: stopPlay,

@@ -8,7 +8,9 @@
 //            none aborted (a drag never starves); a hand that moved on meanwhile is asked
 //            for when one lands; an answer older than the one shown is dropped.
 // A key press asks ahead for the answers one press away on either side. An answer for
-// the state shown is not asked for again. Each answer drawn counts in #plots
+// the state shown is not asked for again. A view that can compute its answer in the page
+// (request.local(body), the same model as the server's, or null when that would take too
+// long) asks the server only when the page cannot. Each answer drawn counts in #plots
 // data-<id>-frame.
 
 import { postJSON } from "./api.js";
@@ -77,6 +79,8 @@ function cancel(view) {
 function answerFor(view, key, body, signal) {
   const name = `${view.id} ${key}`;
   if (answers.has(name)) return Promise.resolve(answers.get(name));
+  const local = view.request.local?.(body);
+  if (local) return Promise.resolve(local);
   const asked = ahead.get(name);
   if (!asked) return postJSON(view.request.url, body, signal);
   ahead.delete(`${view.id} ${key}`);
@@ -162,7 +166,7 @@ export function prefetchViews(states) {
       if (JSON.stringify(exploreBody(state)) !== app.frameKey && !view.request.live?.(state)) continue;
       const key = keyOf(view, state);
       const name = `${view.id} ${key}`;
-      if (answers.has(name) || ahead.has(name)) continue;
+      if (answers.has(name) || ahead.has(name) || view.request.local) continue;
       const asked = postJSON(view.request.url, view.request.body(state), undefined, "low");
       asked.catch(() => {}); // a failed one is asked for again when its key is pressed
       keep(ahead, name, asked);

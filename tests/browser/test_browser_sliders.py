@@ -92,9 +92,9 @@ def test_mass_slider_moves_only_the_simulated_points(explorer):
     explorer.page.evaluate("window.breakaway.rampReady()")
     state = explorer.state()
     assert state["m"] > DEFAULTS["m"]
-    # the quasi-static frame does not use m: no new frame is asked for, the simulations
-    # (the ramp and the break-away points) are
-    assert "explore" not in asked and {"simulate", "ramp"} <= set(asked)
+    # the quasi-static frame does not use m: no new frame is asked for, the simulated
+    # break-away points are; the short ramp run is made in the page (rampmodel.js)
+    assert "explore" not in asked and "simulate" in asked and "ramp" not in asked
     assert int(explorer.page.locator("#plots").get_attribute("data-ramp-frame")) == int(ramps) + 1
     after = snapshot(explorer)
     for plot in ("stribeck", "hysteresis", "phase"):
