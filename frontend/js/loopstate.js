@@ -50,11 +50,15 @@ const PAGE_DEFAULTS = { comp: "off", c: 0.5, limit: false, u_max: 2, comp_model:
 
 let defaults = null; // the loop part of a default state, once loadLoopDefaults has run
 let duration = 5; // [s], the server's LOOP_COMMON
+let reference = null; // the server's default reference sizes {h, w, f}
+/** Samples of a run's uniform grid the page asks for (the server's default). */
+const POINTS = 2000;
 
 /** The loop's defaults from the server: POST /api/loop {} echoes them (a short grid). */
 export async function loadLoopDefaults(postJSON) {
   const echo = await postJSON("/api/loop", { points: 10 });
   duration = echo.duration;
+  reference = { h: echo.reference.h, w: echo.reference.w, f: echo.reference.f };
   defaults = {
     Kp: echo.controller.Kp, Ki: echo.controller.Ki, Kd: echo.controller.Kd,
     m_loop: echo.params.m, ref: echo.reference.kind,
@@ -136,7 +140,7 @@ export function compScale(state) {
  *  mass, gains and reference (only what its kind uses, so that a hidden slider asks for
  *  nothing), the compensation (its own model when chosen). */
 export function loopBody(state) {
-  const body = { model: "presliding", F_hat: state.F_hat, m: Number(state.m_loop) };
+  const body = { model: "presliding", F_hat: state.F_hat, m: Number(state.m_loop), points: POINTS };
   for (const name of ["Fc", "Fs", "V", "delta", "sigma", "s", "z_ba"]) body[name] = parseNumber(state[name]);
   body.controller = {
     Kp: Number(state.Kp), Ki: Number(state.Ki), Kd: Number(state.Kd),
@@ -150,6 +154,33 @@ export function loopBody(state) {
   const own = compParams(state);
   if (scale > 0 && state.comp_model === "fitted" && own) body.compensation.params = own;
   return body;
+}
+
+let worker = null;
+const pending = new Map(); // run id -> its promise's resolve
+let runs = 0;
+
+/** The run of `body` made in the page (loopmodel.js, the server's model and integrator,
+ *  in loopworker.js off the main thread), the reference's missing sizes the server's:
+ *  a promise of the answer, or of null when it is the server's to make. */
+export function localLoop(body) {
+  if (!worker) {
+    worker = new Worker(new URL("./loopworker.js", import.meta.url), { type: "module" });
+    worker.onmessage = ({ data }) => {
+      pending.get(data.id)?.(data.result);
+      pending.delete(data.id);
+    };
+    worker.onerror = () => { // the page makes no run then: the server makes them all
+      for (const resolve of pending.values()) resolve(null);
+      pending.clear();
+    };
+  }
+  runs += 1;
+  const id = runs;
+  return new Promise((resolve) => {
+    pending.set(id, resolve);
+    worker.postMessage({ id, body, defaults: { ...reference, duration } });
+  });
 }
 
 /** Round up to two significant digits (a gain the sentence proposes). */

@@ -1,11 +1,12 @@
 // The control loop as a view of the registry (views.js) with a request of its own
 // (POST /api/loop, MODEL.md §5b): three plots from one answer (loopplots.js), the
-// sentence under them (loopexplain.js) and the stick-phase table. The loop answers in
-// about 12 ms, so while its card is on the screen it follows every change live, the
+// sentence under them (loopexplain.js) and the stick-phase table. The page runs the loop
+// itself (loopmodel.js in a worker, 4–5 ms for the default 5-s run; a run over its step
+// budget goes to the server), so while its card is on the screen it follows every change live, the
 // friction sliders' too (off the screen, a friction slider's run waits for the hand to
-// rest: each run takes the server's worker 15 ms, which a drag of the model plots would
-// share). Once a state rests, the variants the sentence quotes (Fs = Fc, more Kd,
-// compensation switched) are run too, at most four requests, the previous ones aborted.
+// rest: nobody sees it, and a drag of the model plots would share its time). Once a
+// state rests, the variants the sentence quotes (Fs = Fc, more Kd, compensation
+// switched) are run too, at most four, the previous ones aborted.
 
 import { postJSON } from "./api.js";
 import { validate } from "./controls.js";
@@ -13,7 +14,8 @@ import { buildLoopControls, widenLoopRange } from "./loopcontrols.js";
 import { explainLoop, summarise, whatIfStates } from "./loopexplain.js";
 import { LOOP_AXES, loopFigures, phaseRows } from "./loopplots.js";
 import {
-  LOOP_CONTROLS, fittedLoopState, loadLoopDefaults, loopBody, loopDefaults, readLoop, writeLoop,
+  LOOP_CONTROLS, fittedLoopState, loadLoopDefaults, localLoop, loopBody, loopDefaults, readLoop,
+  writeLoop,
 } from "./loopstate.js";
 import { onPhone, plotMovedBy, showPlotInView } from "./phone.js";
 import { onStateLeft } from "./render.js";
@@ -44,7 +46,7 @@ registerView({
   id: "loop",
   source: "request",
   axes: LOOP_AXES["loop-position"],
-  request: { url: "/api/loop", body: loopBody, debounceMs: LOOP_DEBOUNCE_MS, live },
+  request: { url: "/api/loop", body: loopBody, debounceMs: LOOP_DEBOUNCE_MS, live, local: localLoop },
   figures: ({ state, result }) => loopFigures(result, state),
   onDraw: (result, state) => showNumbers(result, state),
   onError: (error) => {
@@ -107,8 +109,10 @@ function askWhatIfs(state, result, key) {
     whatifs.controller = controller;
     const variants = whatIfStates(state, result);
     try {
+      const run = async (body) => (await localLoop(body))
+        ?? postJSON("/api/loop", body, controller.signal);
       const runs = await Promise.all(Object.entries(variants).map(async ([name, variant]) => [
-        name, summarise(await postJSON("/api/loop", loopBody(variant), controller.signal))]));
+        name, summarise(await run(loopBody(variant)))]));
       const summary = Object.fromEntries(runs);
       if (variants.kd) summary.kdValue = variants.kd.Kd;
       whatifs.cache.set(key, summary);

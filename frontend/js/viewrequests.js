@@ -10,7 +10,7 @@
 // A key press asks ahead for the answers one press away on either side. An answer for
 // the state shown is not asked for again. A view that can compute its answer in the page
 // (request.local(body), the same model as the server's, or null when that would take too
-// long) asks the server only when the page cannot. Each answer drawn counts in #plots
+// long; a value or a promise of one) asks the server only when the page cannot. Each answer drawn counts in #plots
 // data-<id>-frame.
 
 import { postJSON } from "./api.js";
@@ -79,12 +79,15 @@ function cancel(view) {
 function answerFor(view, key, body, signal) {
   const name = `${view.id} ${key}`;
   if (answers.has(name)) return Promise.resolve(answers.get(name));
+  const server = () => {
+    const asked = ahead.get(name);
+    if (!asked) return postJSON(view.request.url, body, signal);
+    ahead.delete(name);
+    return asked.catch(() => postJSON(view.request.url, body, signal));
+  };
+  // the page's own run (a value, or a promise of one), or null: the server's
   const local = view.request.local?.(body);
-  if (local) return Promise.resolve(local);
-  const asked = ahead.get(name);
-  if (!asked) return postJSON(view.request.url, body, signal);
-  ahead.delete(`${view.id} ${key}`);
-  return asked.catch(() => postJSON(view.request.url, body, signal));
+  return local ? Promise.resolve(local).then((value) => value ?? server()) : server();
 }
 
 /** Ask for `state`'s answer and draw it, unless a later request's answer is shown by
