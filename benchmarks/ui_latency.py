@@ -49,7 +49,8 @@ async ({name: slider, mode, presses, gaps, seconds, hz}) => {
   const range = document.getElementById(name + '-range');
   const ramp = name === 'm' && !loop;
   const attr = loop ? 'data-loop-frame' : ramp ? 'data-ramp-frame' : 'data-frame';
-  const shownValue = () => (loop ? window.breakaway.loopParams()?.[name]
+  // the loop's answer gives its mass as the plant's m
+  const shownValue = () => (loop ? window.breakaway.loopParams()?.[name === 'm_loop' ? 'm' : name]
     : ramp ? window.breakaway.viewParams('ramp')?.m : window.breakaway.state()[name]);
   const sleep = (ms) => new Promise((resolve) => setTimeout(resolve, ms));
   // the loop follows a friction slider live while its card is on the screen
