@@ -30,7 +30,7 @@ function restyle() {
 
 /** Where a key moves a range input: one position, a tenth of the range, the ends (as
  *  the browser does; the page moves it itself, so that the plots follow at once). */
-export function keyTarget(key, range) {
+function keyTarget(key, range) {
   const value = Number(range.value);
   const min = Number(range.min);
   const max = Number(range.max);
@@ -40,6 +40,25 @@ export function keyTarget(key, range) {
     PageUp: value + tenth, PageDown: value - tenth, Home: min, End: max,
   };
   return key in moves ? Math.min(max, Math.max(min, moves[key])) : null;
+}
+
+/** Keys move `range` in the page (keyTarget), then `moved()` and a history entry; on
+ *  focus and after each press the states `ahead()` gives (one press away) are asked for
+ *  ahead, so the next press either way waits for nothing only a request can draw. */
+export function wireSliderKeys(range, moved, ahead) {
+  range.addEventListener("focus", () => prefetchViews(ahead()));
+  range.addEventListener("keydown", (event) => {
+    if (event.altKey || event.ctrlKey || event.metaKey) return;
+    const target = keyTarget(event.key, range);
+    if (target === null) return;
+    event.preventDefault();
+    if (target !== Number(range.value)) {
+      range.value = String(target);
+      moved();
+      commit();
+    }
+    prefetchViews(ahead());
+  });
 }
 
 /** The states one key press away on `spec`'s slider, on either side. */
@@ -66,21 +85,7 @@ function wireParameters() {
       refresh({ hold: true });
     };
     range.addEventListener("input", moved);
-    // a slider taken by the keyboard: what only a request can draw is asked for ahead
-    range.addEventListener("focus", () => prefetchViews(neighbours(spec, range)));
-    range.addEventListener("keydown", (event) => {
-      if (event.altKey || event.ctrlKey || event.metaKey) return;
-      const target = keyTarget(event.key, range);
-      if (target === null) return;
-      event.preventDefault();
-      if (target !== Number(range.value)) {
-        range.value = String(target);
-        moved();
-        commit();
-      }
-      // the next press either way needs no wait for what only a request can draw
-      prefetchViews(neighbours(spec, range));
-    });
+    wireSliderKeys(range, moved, () => neighbours(spec, range));
     box.addEventListener("input", () => {
       const value = parseNumber(box.value);
       app.state[spec.name] = Number.isNaN(value) ? box.value : value;

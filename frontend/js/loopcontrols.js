@@ -8,13 +8,12 @@
 import {
   parseNumber, registerControlWriter, roundSignificant, sliderToValue, valueToSlider,
 } from "./controls.js";
-import { keyTarget } from "./inputs.js";
+import { wireSliderKeys } from "./inputs.js";
 import {
   LOOP_CONTROLS, compParams, loopError, loopSpec,
 } from "./loopstate.js";
 import { refresh, settleNow } from "./render.js";
 import { $, app, commit } from "./store.js";
-import { prefetchViews } from "./viewrequests.js";
 
 const STEPS = 1000;
 /** Where each slider goes in the loop's fieldset. */
@@ -129,19 +128,7 @@ function wireSlider(spec) {
     refresh({ hold: true });
   };
   range.addEventListener("input", moved);
-  range.addEventListener("focus", () => prefetchViews(neighbours(spec, range)));
-  range.addEventListener("keydown", (event) => {
-    if (event.altKey || event.ctrlKey || event.metaKey) return;
-    const target = keyTarget(event.key, range);
-    if (target === null) return;
-    event.preventDefault();
-    if (target !== Number(range.value)) {
-      range.value = String(target);
-      moved();
-      commit();
-    }
-    prefetchViews(neighbours(spec, range));
-  });
+  wireSliderKeys(range, moved, () => neighbours(spec, range));
   box.addEventListener("input", () => {
     const value = parseNumber(box.value);
     const message = loopError(spec.name, value);
