@@ -156,7 +156,7 @@ export function loopBody(state) {
   return body;
 }
 
-let worker = null;
+let worker = null; // the worker, once started; false once it failed (the server runs all)
 const pending = new Map(); // run id -> its promise's resolve
 let runs = 0;
 
@@ -164,13 +164,16 @@ let runs = 0;
  *  in loopworker.js off the main thread), the reference's missing sizes the server's:
  *  a promise of the answer, or of null when it is the server's to make. */
 export function localLoop(body) {
+  if (worker === false) return Promise.resolve(null);
   if (!worker) {
     worker = new Worker(new URL("./loopworker.js", import.meta.url), { type: "module" });
     worker.onmessage = ({ data }) => {
       pending.get(data.id)?.(data.result);
       pending.delete(data.id);
     };
-    worker.onerror = () => { // the page makes no run then: the server makes them all
+    worker.onerror = () => { // it did not start: the server makes every run from now on
+      worker.terminate();
+      worker = false;
       for (const resolve of pending.values()) resolve(null);
       pending.clear();
     };

@@ -9,9 +9,9 @@
 //            for when one lands; an answer older than the one shown is dropped.
 // A key press asks ahead for the answers one press away on either side. An answer for
 // the state shown is not asked for again. A view that can compute its answer in the page
-// (request.local(body), the same model as the server's, or null when that would take too
-// long; a value or a promise of one) asks the server only when the page cannot. Each answer drawn counts in #plots
-// data-<id>-frame.
+// (request.local(body): the same model as the server's, a value or a promise of one, or
+// null when that would take too long) asks the server only when the page cannot. Each
+// answer drawn counts in #plots data-<id>-frame.
 
 import { postJSON } from "./api.js";
 import {
@@ -85,8 +85,14 @@ function answerFor(view, key, body, signal) {
     ahead.delete(name);
     return asked.catch(() => postJSON(view.request.url, body, signal));
   };
-  // the page's own run (a value, or a promise of one), or null: the server's
-  const local = view.request.local?.(body);
+  // the page's own run (a value, or a promise of one), or null: the server's, which
+  // also makes it when the page's failed (and says why, where the body is wrong)
+  let local = null;
+  try {
+    local = view.request.local?.(body) ?? null;
+  } catch {
+    local = null;
+  }
   return local ? Promise.resolve(local).then((value) => value ?? server()) : server();
 }
 
