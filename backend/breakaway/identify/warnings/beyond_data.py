@@ -99,16 +99,21 @@ def beyond_data(fit: FitResult, noise: float) -> dict[str, str]:
         Fs, Fc = p[level], p[low]
         # without asymmetry one level holds both ways
         bound = None if held is None else (held[way] if asymmetric else max(held))
+        slowest, fastest = float(np.min(speeds)), float(np.max(speeds))
         if Fs > top * (1 + ABOVE_SHARE) and Fs > top + ABOVE_NOISE * noise:
+            # a force held without sliding bounds Fs from below; else the curve's own
+            # value at the slowest speed it is shown at (the largest force of a steady
+            # curve sits at its fastest speed and bounds nothing)
+            floor = bound if bound is not None else (
+                Fc + (Fs - Fc) * math.exp(-(slowest / p["V"]) ** p["delta"]))
             add((level,), (
                 f"{level} = {Fs:.4g} {unit} lies above every force in the file (the largest is "
                 f"{top:.4g} {unit}): the Stribeck peak is an extrapolation; the data set "
-                f"only {level} ≥ {bound if bound is not None else top:.4g} {unit}"))
+                f"only {level} ≥ {floor:.4g} {unit}"))
         if bound is not None and Fs < bound - ABOVE_NOISE * noise:
             add((level,), (
                 f"{level} = {Fs:.4g} {unit} is below {bound:.4g} {unit}, a force the data hold "
                 f"without gross sliding, which is a lower bound on {level}"))
-        slowest, fastest = float(np.min(speeds)), float(np.max(speeds))
         if fit.assessment.bound.get(level) == "lower" or Fs <= Fc:
             add(("V", "delta"), (
                 f"{level} sits on {level} = {low} (no Stribeck drop in the data): V and δ "
