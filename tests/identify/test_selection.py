@@ -141,3 +141,15 @@ def test_a_quadratic_joint_curve_is_not_a_viscous_fit_with_fc_on_its_bound():
                 if w["code"] == "beyond-data" and w["parameter"] == "Fs")
     bound = float(peak.split("≥ ")[1].split()[0])
     assert bound == pytest.approx(final["params"]["Fc"], rel=0.05)
+
+
+def test_a_half_that_holds_sigma_only_loosely_does_not_refuse_it():
+    # seed 6 of the viscous strokes: the second half's slow strokes trade σ against the
+    # Stribeck curve (21 ± 41 against the first half's 119 ± 5 N·s/m) and fit as well
+    # with the record's σ; the whole record names viscous at its truth
+    from .machines import families
+
+    recording = families()["strokes-viscous"](6)
+    r = report(diagnose(parse_csv(recording.csv)))
+    assert r["effects"] == ["viscous"]
+    assert r["final"]["params"]["sigma"] == pytest.approx(recording.truth["sigma"], rel=0.1)

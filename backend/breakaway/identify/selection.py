@@ -210,6 +210,8 @@ class Selection:
         best = None
         for i, first in enumerate(promising):
             for second in promising[i + 1:]:
+                if EXCLUSIVE.get(first) == second:  # never in one model (MODEL.md §7)
+                    continue
                 self.report(0.9, f"trying {first} with {second}")
                 try:
                     pair = fit_with_effect(self.data, trials[first], second,

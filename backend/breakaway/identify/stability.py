@@ -12,7 +12,11 @@ each parameter's two values agree within :data:`RELATIVE_AGREEMENT` of the large
 where both halves give it a sharp standard error, within :data:`AGREEMENT_SIGMAS`
 combined standard errors (an angle within :data:`PHASE_AGREEMENT`). A parameter the
 data tie to another (a correlation above 0.99) still has a value in each half, and a
-true one keeps it.
+true one keeps it. Where a half holds a value only loosely (its standard error above
+:data:`SHARP` of it), a difference counts only if a half refuses the whole record's
+parameters, its own fit better by the BIC's bar (:data:`~.gates.MIN_BIC_DROP`, its own
+parameters counted): a half of slow strokes that trades σ against the Stribeck curve
+fits as well with the record's σ, and says nothing against it.
 
 Steady and break-away files are sets of separate measurements, not a record in time;
 the check is for time series.
@@ -26,7 +30,8 @@ import numpy as np
 
 from .csvdata import Dataset
 from .effects import EFFECTS
-from .fitting import FitResult, fit_model
+from .fitting import FitResult, _cost, fit_model
+from .gates import MIN_BIC_DROP
 
 #: Parameter values of the two halves agree within this share of the larger ...
 RELATIVE_AGREEMENT = 0.25
@@ -40,11 +45,22 @@ PHASE_AGREEMENT = 0.5
 HALF_EVALUATIONS = 60
 
 
+def _halves(n: int) -> list[np.ndarray]:
+    index = np.arange(n)
+    return [np.flatnonzero(index < n // 2), np.flatnonzero(index >= n // 2)]
+
+
 def _half_fits(data: Dataset, fit: FitResult):
-    index = np.arange(data.n)
     return [fit_model(data, fit.effects, starts=[fit.params], rows=rows, screen=1,
-                      max_nfev=HALF_EVALUATIONS)
-            for rows in (index < data.n // 2, index >= data.n // 2)]
+                      max_nfev=HALF_EVALUATIONS) for rows in _halves(data.n)]
+
+
+def _refuses(half: FitResult, params: dict, rows: np.ndarray) -> bool:
+    """Whether ``half``'s own fit beats ``params`` on its ``rows`` by the BIC's bar, its
+    own parameters counted (n·ln of the cost ratio − k·ln n)."""
+    own, theirs = _cost(half.problem, half.params, rows), _cost(half.problem, params, rows)
+    n, k = rows.size, len(half.problem.names)
+    return n * math.log(max(theirs, 1e-300) / max(own, 1e-300)) - k * math.log(n) > MIN_BIC_DROP
 
 
 def _agree(name, spec, a: FitResult, b: FitResult) -> bool:
@@ -54,9 +70,15 @@ def _agree(name, spec, a: FitResult, b: FitResult) -> bool:
     gap = abs(p1 - p2)
     if gap <= RELATIVE_AGREEMENT * max(abs(p1), abs(p2)):
         return True
-    s1, s2 = a.stderr.get(name), b.stderr.get(name)
-    sharp = all(s is not None and s <= SHARP * abs(p) for s, p in ((s1, p1), (s2, p2)))
-    return sharp and gap <= AGREEMENT_SIGMAS * math.hypot(s1, s2)
+    if not (_sharp(a, name) and _sharp(b, name)):
+        return False
+    return gap <= AGREEMENT_SIGMAS * math.hypot(a.stderr[name], b.stderr[name])
+
+
+def _sharp(half: FitResult, name: str) -> bool:
+    """Whether ``half`` holds ``name`` to :data:`SHARP` of its value."""
+    se = half.stderr.get(name)
+    return se is not None and se <= SHARP * abs(half.params[name])
 
 
 def unstable(data: Dataset, fit: FitResult, effect: str) -> str | None:
@@ -69,8 +91,16 @@ def unstable(data: Dataset, fit: FitResult, effect: str) -> str | None:
     except (ValueError, FloatingPointError):
         return None  # a half too short to fit says nothing either way
     problem = fit.problem
+    refused = None  # computed once, where a loosely held value differs
     for name in EFFECTS[effect].keys:
-        if not _agree(name, problem.spec(name), first, second):
+        spec = problem.spec(name)
+        if not _agree(name, spec, first, second):
+            if spec.relative and not (_sharp(first, name) and _sharp(second, name)):
+                if refused is None:
+                    refused = any(_refuses(half, fit.params, rows)
+                                  for half, rows in zip((first, second), _halves(data.n)))
+                if not refused:
+                    continue
             return (f"a stand-in for something outside the library: {name} takes "
                     f"{first.params[name]:.4g} in the first half of the record and "
                     f"{second.params[name]:.4g} in the second")
