@@ -50,9 +50,9 @@ def _halves(n: int) -> list[np.ndarray]:
     return [np.flatnonzero(index < n // 2), np.flatnonzero(index >= n // 2)]
 
 
-def _half_fits(data: Dataset, fit: FitResult):
+def _half_fits(data: Dataset, fit: FitResult, halves: list[np.ndarray]):
     return [fit_model(data, fit.effects, starts=[fit.params], rows=rows, screen=1,
-                      max_nfev=HALF_EVALUATIONS) for rows in _halves(data.n)]
+                      max_nfev=HALF_EVALUATIONS) for rows in halves]
 
 
 def _refuses(half: FitResult, params: dict, rows: np.ndarray) -> bool:
@@ -87,7 +87,8 @@ def unstable(data: Dataset, fit: FitResult, effect: str) -> str | None:
     if data.kind != "timeseries":
         return None
     try:
-        first, second = _half_fits(data, fit)
+        halves = _halves(data.n)
+        first, second = _half_fits(data, fit, halves)
     except (ValueError, FloatingPointError):
         return None  # a half too short to fit says nothing either way
     problem = fit.problem
@@ -98,7 +99,7 @@ def unstable(data: Dataset, fit: FitResult, effect: str) -> str | None:
             if spec.relative and not (_sharp(first, name) and _sharp(second, name)):
                 if refused is None:
                     refused = any(_refuses(half, fit.params, rows)
-                                  for half, rows in zip((first, second), _halves(data.n)))
+                                  for half, rows in zip((first, second), halves))
                 if not refused:
                     continue
             return (f"a stand-in for something outside the library: {name} takes "

@@ -20,6 +20,7 @@ Prediction hooks (each returns its input unchanged unless the effect overrides i
 
 from __future__ import annotations
 
+from ..csvdata.dataset import unit_of
 from .asymmetry import Asymmetry
 from .backlash import Backlash, engaged_presliding, play_operator
 from .base import (
@@ -31,7 +32,6 @@ from .base import (
     Effect,
     Param,
 )
-from ..csvdata.dataset import unit_of
 from .detection import Detection, viscous_equivalent_of_detection
 from .drift import Drift
 from .dwell import Dwell

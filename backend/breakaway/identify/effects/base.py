@@ -34,7 +34,8 @@ class Param:
     name : str
         The report's key.
     unit : str
-        SI unit for linear motion (N, m); :func:`~breakaway.identify.csvdata.dataset.unit_of` turns it rotary.
+        SI unit for linear motion (N, m);
+        :func:`~breakaway.identify.csvdata.dataset.unit_of` turns it rotary.
     bounds : callable
         ``bounds(scales) -> (lo, hi)`` in the parameter's own units.
     log : bool

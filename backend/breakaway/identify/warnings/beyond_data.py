@@ -93,19 +93,21 @@ def beyond_data(fit: FitResult, noise: float) -> dict[str, str]:
         return found
 
     asymmetric = "Fs_neg" in p
+    slowest, fastest = float(np.min(speeds)), float(np.max(speeds))
+    shape = _shape_unknown(fit)
     for (low, level), way in zip(LEVELS, (0, 1)):
         if level not in p:
             continue
         Fs, Fc = p[level], p[low]
         # without asymmetry one level holds both ways
         bound = None if held is None else (held[way] if asymmetric else max(held))
-        slowest, fastest = float(np.min(speeds)), float(np.max(speeds))
+        # the fitted curve's friction at the slowest speed the data show it at
+        at_slowest = Fc + (Fs - Fc) * math.exp(-(slowest / p["V"]) ** p["delta"])
         if Fs > top * (1 + ABOVE_SHARE) and Fs > top + ABOVE_NOISE * noise:
             # a force held without sliding bounds Fs from below; else the curve's own
             # value at the slowest speed it is shown at (the largest force of a steady
             # curve sits at its fastest speed and bounds nothing)
-            floor = bound if bound is not None else (
-                Fc + (Fs - Fc) * math.exp(-(slowest / p["V"]) ** p["delta"]))
+            floor = bound if bound is not None else at_slowest
             add((level,), (
                 f"{level} = {Fs:.4g} {unit} lies above every force in the file (the largest is "
                 f"{top:.4g} {unit}): the Stribeck peak is an extrapolation; the data set "
@@ -120,21 +122,19 @@ def beyond_data(fit: FitResult, noise: float) -> dict[str, str]:
                 f"describe a drop that is not there"))
             continue
         begins, ends = _drop_speeds(p["V"], p["delta"])
-        shape = _shape_unknown(fit)
         if shape:
-            held_at = Fc + (Fs - Fc) * math.exp(-(slowest / p["V"]) ** p["delta"])
             add((level, "V", "delta"), (
                 f"the shape of the Stribeck drop is not determined ({shape}), so neither is "
                 f"where it falls (V) nor the peak {level} it extrapolates to at rest; the "
-                f"friction at the slowest sliding speed, {held_at:.4g} {unit}, is a lower "
+                f"friction at the slowest sliding speed, {at_slowest:.4g} {unit}, is a lower "
                 f"bound on {level}"))
         if ends < slowest:
             add((level, "V", "delta"), (
                 f"the Stribeck drop of V = {p['V']:.3g} and δ = {p['delta']:.3g} is over by "
                 f"{ends:.3g} {speed_unit}, below the slowest speed at which the data show "
                 f"the curve ({slowest:.3g} {speed_unit}): the data show only the level "
-                f"{low}; the friction there, {Fc + (Fs - Fc) * math.exp(-(slowest / p['V']) ** p['delta']):.4g} "
-                f"{unit}, is a lower bound on {level}"))
+                f"{low}; the friction there, {at_slowest:.4g} {unit}, is a lower bound on "
+                f"{level}"))
         elif begins > fastest:
             add((low, "V", "delta"), (
                 f"the Stribeck drop of V = {p['V']:.3g} and δ = {p['delta']:.3g} begins at "
