@@ -14,6 +14,8 @@
 // (nGrid >= 2) the uniform grid over [0, tEnd], interpolated, plus the events whose code
 // shares a bit with eventMask.
 
+import { shape } from "./model.js";
+
 export const STATUS_STOP = 0;
 export const STATUS_END = 1;
 export const STATUS_STEP_LIMIT = 2;
@@ -193,12 +195,6 @@ export function g(v, Fc, Fs, V, delta) {
   const av = Math.abs(v);
   if (av === 0.0) return delta > 0 ? Fs : Fc;
   return Fc + (Fs - Fc) * Math.exp(-((av / V) ** delta));
-}
-
-/** f(z) of (E4) (presliding.shape_scalar). */
-function shape(z) {
-  if (z >= 1.0) return 1.0;
-  return z > 0.0 ? z * (1.0 - Math.log(z)) : 0.0;
 }
 
 /** The presliding friction of (E6') for y = [x, v, …] and mem = [x_r, F_r, d, …]

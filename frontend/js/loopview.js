@@ -2,11 +2,11 @@
 // (POST /api/loop, MODEL.md §5b): three plots from one answer (loopplots.js), the
 // sentence under them (loopexplain.js) and the stick-phase table. The page runs the loop
 // itself (loopmodel.js in a worker, 4–5 ms for the default 5-s run; a run over its step
-// budget goes to the server), so while its card is on the screen it follows every change live, the
-// friction sliders' too (off the screen, a friction slider's run waits for the hand to
-// rest: nobody sees it, and a drag of the model plots would share its time). Once a
-// state rests, the variants the sentence quotes (Fs = Fc, more Kd, compensation
-// switched) are run too, at most four, the previous ones aborted.
+// budget goes to the server), so while its card is on the screen it follows every
+// change live, the friction sliders' too (off the screen, a friction slider's run waits
+// for the hand to rest: nobody sees it, and a drag of the model plots would share its
+// time). Once a state rests, the variants the sentence quotes (Fs = Fc, more Kd,
+// compensation switched) are run too, at most four, the previous ones aborted.
 
 import { postJSON } from "./api.js";
 import { validate } from "./controls.js";

@@ -102,7 +102,7 @@ function e12Work(z, k, s) {
 }
 
 /** f(z) = z(1 − ln z) (E4); 0 at 0, 1 from z = 1 on. */
-function shape(z) {
+export function shape(z) {
   if (z >= 1.0) return 1.0;
   return z > 0.0 ? z * (1.0 - Math.log(z)) : 0.0;
 }
