@@ -423,3 +423,27 @@ def test_rtol_limits():
         simulate_breakaway(10.0, **DEFAULT, rtol=dynamics.MIN_RTOL / 2)
     with pytest.raises(ValueError, match="^rtol must"):
         simulate_breakaway(10.0, **DEFAULT, rtol=1e-2)
+
+
+@pytest.mark.parametrize("delta", [1.0, 0.5, 2.0, -1.0])
+def test_g_on_a_branch_is_g_of_the_speed_and_continues_past_the_reversal(delta):
+    from breakaway.dynamics.common import _g, _g_branch
+
+    Fc, Fs, V = 1.0, 3.0, 100.0
+    # along the branch (u = d·v >= 0) it is g(|v|), bit for bit, in either direction
+    for u in (0.0, 1e-9, 0.3, 50.0, 1e4):
+        assert _g_branch(u, Fc, Fs, V, delta) == _g(u, Fc, Fs, V, delta) == _g(-u, Fc, Fs, V, delta)
+    # past the reversal: continuous at u = 0; for δ = 1 analytic (g's kink is gone)
+    assert _g_branch(-1e-30, Fc, Fs, V, delta) == pytest.approx(_g(0.0, Fc, Fs, V, delta), abs=1e-12)
+    if delta == 1.0:
+        for u in (-1e-6, -0.5, -20.0):
+            assert _g_branch(u, Fc, Fs, V, delta) == pytest.approx(Fc + (Fs - Fc) * math.exp(-u / V), rel=1e-15)
+        slope = [(_g_branch(side * 1e-6, Fc, Fs, V, delta) - Fs) / (side * 1e-6) for side in (-1, 1)]
+        assert slope[0] == pytest.approx(slope[1], rel=1e-5) == pytest.approx(-(Fs - Fc) / V, rel=1e-5)
+
+
+def test_step_factor_is_the_fifth_root_of_the_error_norm():
+    from breakaway.dynamics.integrator import _step_factor
+
+    for norm in (1e-10, 0.03, 1.0, 7.5, 1e6):
+        assert _step_factor(norm) == pytest.approx(norm ** -0.2, rel=1e-14)

@@ -7,7 +7,7 @@
 // Python run. A run over LIVE_MAX_STEPS steps is left to the server: null.
 
 import {
-  EVENT_BREAKAWAY, EVENT_REVERSAL, EVENT_STICK, RTOL, STATUS_STEP_LIMIT, STATUS_STOP, g,
+  EVENT_BREAKAWAY, EVENT_REVERSAL, EVENT_STICK, RTOL, STATUS_STEP_LIMIT, STATUS_STOP, gBranch,
   integrate, preslidingForce, validStribeck,
 } from "./integrator.js";
 import { breakawayForce } from "./model.js";
@@ -49,7 +49,7 @@ function loopModel(plant, ctl, ref, comp, runaway) {
     let u = ctl.Kp * (r - y[0]) + ctl.Ki * y[2] + ctl.Kd * (rDot - y[1]);
     if (comp.scale !== 0.0 && mem[3] !== 0.0) {
       const q = comp.params;
-      u += comp.scale * (mem[3] * g(rDot, q.Fc, q.Fs, q.V, q.delta) + q.sigma * rDot);
+      u += comp.scale * (mem[3] * gBranch(mem[3] * rDot, q.Fc, q.Fs, q.V, q.delta) + q.sigma * rDot);
     }
     return Math.min(Math.max(u, -uMax), uMax);
   };

@@ -27,7 +27,8 @@ import numpy as np
 from numba import njit
 
 from ..params import _finite, check_fraction, check_positive, check_stribeck
-from .common import EVENT_BREAKAWAY, EVENT_COMPENSATION, EVENT_REVERSAL, EVENT_STICK, _g
+from .common import (EVENT_BREAKAWAY, EVENT_COMPENSATION, EVENT_REVERSAL, EVENT_STICK, _g,
+                     _g_branch)
 from .lugre import (_L_DELTA, _L_FC, _L_FS, _L_M, _L_S0, _L_VS, _lugre_force, _lugre_params,
                     _lugre_zdot)
 from .ramp_model import _P_M, _P_S, _presliding_force, _presliding_params
@@ -62,7 +63,7 @@ def _control(t, y, p, mem, r, r_dot):
     u = p[_KP] * (r - y[0]) + p[_KI] * y[y.size - 1] + p[_KD] * (r_dot - y[1])
     if p[_C] != 0.0 and mem[_SR] != 0.0:
         # F_m = Fss(ṙ) of (E2) with sgn(ṙ) held on its branch (sr = 0: ṙ ≡ 0, F_m = 0)
-        g = _g(r_dot, p[_CFC], p[_CFS], p[_CV], p[_CDELTA])
+        g = _g_branch(mem[_SR] * r_dot, p[_CFC], p[_CFS], p[_CV], p[_CDELTA])
         u += p[_C] * (mem[_SR] * g + p[_CSIGMA] * r_dot)
     return min(max(u, -p[_UMAX]), p[_UMAX])
 

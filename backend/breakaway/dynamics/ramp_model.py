@@ -11,7 +11,7 @@ from numba import njit
 
 from ..params import check_fraction, check_positive, check_stribeck
 from ..presliding import shape_scalar
-from .common import EVENT_REVERSAL, _g
+from .common import EVENT_REVERSAL, _g_branch
 
 _P_FC, _P_FS, _P_V, _P_DELTA, _P_SIGMA, _P_S, _P_M, _P_K, _P_ZBA = range(9)
 
@@ -20,7 +20,8 @@ _P_FC, _P_FS, _P_V, _P_DELTA, _P_SIGMA, _P_S, _P_M, _P_K, _P_ZBA = range(9)
 def _presliding_force(t, y, p, mem):
     z = p[_P_S] * abs(y[0] - mem[0])
     shape = shape_scalar(z)
-    target = mem[2] * _g(y[1], p[_P_FC], p[_P_FS], p[_P_V], p[_P_DELTA]) + p[_P_SIGMA] * y[1]
+    g = _g_branch(mem[2] * y[1], p[_P_FC], p[_P_FS], p[_P_V], p[_P_DELTA])
+    target = mem[2] * g + p[_P_SIGMA] * y[1]
     return mem[1] + (target - mem[1]) * shape
 
 
