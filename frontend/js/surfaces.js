@@ -44,6 +44,8 @@ const graph = (id) => document.getElementById(`plot-${id}`);
  */
 export function settle(id, figure, config, current = () => true) {
   const gd = graph(id);
+  deferred.delete(gd);
+  visible(gd); // watched from its first drawing on
   // the layout as JSON, taken before Plotly writes its computed ranges into it
   const wanted = { data: figure.data, layoutKey: JSON.stringify(figure.layout) };
   const last = drawn[id];
@@ -58,12 +60,40 @@ export function settle(id, figure, config, current = () => true) {
   });
 }
 
+const inView = new Map(); // graph -> whether it is in the viewport (IntersectionObserver)
+const deferred = new Map(); // graph -> [plot id, the figure] to draw live once it is in view
+let viewport = null;
+
+/** Whether graph `gd` is in the viewport (true until the observer first says, which it
+ *  does soon after a graph's first drawing). A live frame of a graph out of view is
+ *  drawn once it comes into view: while a hand moves the loop's friction, the model's
+ *  four plots above it cost each frame their drawing. */
+function visible(gd) {
+  viewport ??= new IntersectionObserver((entries) => {
+    for (const entry of entries) {
+      inView.set(entry.target, entry.isIntersecting);
+      const waiting = entry.isIntersecting && deferred.get(entry.target);
+      if (waiting) live(...waiting);
+    }
+  });
+  if (!inView.has(gd)) {
+    inView.set(gd, true);
+    viewport.observe(gd);
+  }
+  return inView.get(gd);
+}
+
 /** Draw `figure` on plot `id`'s live canvas (nothing when it shows it already: while
- *  the mass moves, only the ramp changes); false when the graph has no Plotly layout yet
- *  (its first drawing is Plotly's). */
+ *  the mass moves, only the ramp changes; later when the graph is out of view); false
+ *  when the graph has no Plotly layout yet (its first drawing is Plotly's). */
 export function live(id, figure) {
   const gd = graph(id);
+  deferred.delete(gd);
   if (isLive(gd) && drawnLive[id]?.gd === gd && sameFigure(drawnLive[id].figure, figure)) return true;
+  if (gd._fullLayout?._size && !visible(gd)) {
+    deferred.set(gd, [id, figure]);
+    return true;
+  }
   const done = drawLive(gd, figure);
   if (done) {
     drawnLive[id] = { gd, figure };

@@ -227,3 +227,39 @@ def test_a_step_of_the_mass_draws_the_ramp_live_from_the_pages_own_run(explorer)
     assert sent(page, "ramp") == []
     page.evaluate("window.breakaway.rampReady()")
     assert sent(page, "explore") == [sent(page, "explore")[0]]  # m asks for no frame
+
+
+#: A live frame for plot `id` with its curves' y doubled, from the surfaces module itself:
+#: the draws counted before and after, and whether the graph then shows the canvas.
+LIVE_DOUBLED = """async (id) => {
+  const { live, surfaceStats } = await import('/js/surfaces.js');
+  const gd = document.getElementById('plot-' + id);
+  const before = surfaceStats.live;
+  const figure = {data: gd.data.map((trace) => ({...trace, y: Array.from(trace.y ?? [], (v) => 2 * v)})),
+    layout: gd.layout};
+  const shown = live(id, figure);
+  return {shown, before, after: surfaceStats.live, live: gd.dataset.live === 'true'};
+}"""
+
+
+def test_a_live_frame_of_a_plot_out_of_view_is_drawn_once_it_comes_into_view(explorer):
+    # while the hand moves the loop's friction, the model's plots above the loop's card
+    # are out of view: their frames wait, and the one they missed is drawn on scrolling back
+    explorer.open("?sim=0")
+    page = explorer.page
+    page.evaluate("document.getElementById('card-loop').scrollIntoView()")
+    until(page, "document.getElementById('plot-stribeck').getBoundingClientRect().bottom < 0")
+    page.wait_for_timeout(100)  # the intersection observer's first report
+    out_of_view = page.evaluate(LIVE_DOUBLED, "stribeck")
+    assert out_of_view["shown"] is True  # taken: the caller counts its frame
+    assert out_of_view["after"] == out_of_view["before"] and not out_of_view["live"]
+    page.evaluate("document.getElementById('plot-stribeck').scrollIntoView()")
+    until(page, "document.getElementById('plot-stribeck').dataset.live === 'true'")
+    assert page.evaluate("window.breakaway.surfaces().live") == out_of_view["before"] + 1
+    # what it drew is the frame it missed: the doubled curves' range
+    ranges = json.loads(page.locator("#plot-stribeck canvas.live-layer").get_attribute("data-ranges"))
+    plotly = page.evaluate("document.getElementById('plot-stribeck')._fullLayout.yaxis.range")
+    assert ranges["y"][1] == pytest.approx(2 * plotly[1], rel=0.05)
+    # in view, a frame is drawn at once
+    in_view = page.evaluate(LIVE_DOUBLED, "hysteresis")
+    assert in_view["shown"] and in_view["live"] and in_view["after"] == in_view["before"] + 1
