@@ -13,16 +13,17 @@ come from timers in the page, so their spacing is the page's, not Playwright's:
 - drag: 2 s of `input` events at 60 per second (a pointer dragging the slider) that
   move it back and forth over up to 100 positions, then `change` (the release).
 
-A frame counts when `#plots` `data-frame` changes (for m: `data-ramp-frame`, the ramp
-experiment being the only plot m moves; for a slider named `loop:<name>`, e.g.
-`--sliders loop:Ki,loop:Fs`: `data-loop-frame`, the control loop's plots, scrolled into
-view) and what it
-shows is the state with the new value; latency is from the event to that frame, both read with `performance.now()`. A
-drag's latency is from each input to the first frame showing it or a later input;
-frames per second count the frames shown during the drag; "last" is from the last input
-to the frame showing its value. The obvious alternative runs in the same session: every
-input drawn by `Plotly.react` as it comes (`window.breakaway.live(false)`: no live
-canvas, no waiting for the hand to rest).
+The plots a slider's frames count are scrolled into view first, as a person watches
+them (a plot out of view is drawn live only when it comes into view). A frame counts
+when `#plots` `data-frame` changes (for m: `data-ramp-frame`, the ramp experiment being
+the only plot m moves; for a slider named `loop:<name>`, e.g. `--sliders
+loop:Ki,loop:Fs`: `data-loop-frame`, the control loop's plots) and what it shows is the
+state with the new value; latency is from the event to that frame, both read with
+`performance.now()`. A drag's latency is from each input to the first frame showing it
+or a later input; frames per second count the frames shown during the drag; "last" is
+from the last input to the frame showing its value. The obvious alternative runs in the
+same session: every input drawn by `Plotly.react` as it comes
+(`window.breakaway.live(false)`: no live canvas, no waiting for the hand to rest).
 
 Goal (issue 21): p50 ≤ 16 ms and p95 ≤ 33 ms for every slider, either way, keys or
 pointer; during a drag ≥ 30 frames per second and the last value shown ≤ 50 ms after the
@@ -53,11 +54,11 @@ async ({name: slider, mode, presses, gaps, seconds, hz}) => {
   const shownValue = () => (loop ? window.breakaway.loopParams()?.[name === 'm_loop' ? 'm' : name]
     : ramp ? window.breakaway.viewParams('ramp')?.m : window.breakaway.state()[name]);
   const sleep = (ms) => new Promise((resolve) => setTimeout(resolve, ms));
-  // the loop follows a friction slider live while its card is on the screen
-  if (loop) {
-    document.getElementById('card-loop').scrollIntoView();
-    await sleep(100);
-  }
+  // the plots this slider's frames count in view, as a person watches them (a plot out
+  // of view is drawn when it comes into view); the loop follows a friction slider live
+  // while its card is on the screen
+  document.getElementById(loop ? 'card-loop' : ramp ? 'plot-ramp' : 'plot-stribeck').scrollIntoView();
+  await sleep(100);
   const shown = [];
   let last = plots.getAttribute(attr);
   const observer = new MutationObserver(() => {

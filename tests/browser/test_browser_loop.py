@@ -108,6 +108,9 @@ def test_moving_ki_redraws_the_loop_live_and_its_sentence(explorer):
     page = explorer.page
     loop_ready(explorer)
     before = explorer.traces("loop-position")["x (position)"]["y"]
+    # the loop's plots in view, as a person moving its gains watches them (out of view
+    # their live frames wait: tests/browser/test_browser_live_frames.py)
+    page.evaluate("document.getElementById('card-loop').scrollIntoView()")
     mark = page.evaluate("window.__loopFrames.length")
     slider = page.get_by_label("Ki [N/(m·s)] slider", exact=True)
     slider.focus()
