@@ -184,8 +184,8 @@ export function integrate(model, y, {
         room -= 1;
       }
       model.rhs(t, y, k1);
-      // a new presliding branch starts with an infinite stiffness: restart small
-      if (code & EVENT_REVERSAL) h = Math.max(h * 1e-3, 1e-14 * Math.max(t, 1.0));
+      // a new presliding branch starts with an infinite stiffness: restart at a tenth
+      if (code & EVENT_REVERSAL) h = Math.max(h * 0.1, 1e-14 * Math.max(t, 1.0));
       continue;
     }
     t += h;

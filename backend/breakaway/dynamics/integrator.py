@@ -233,8 +233,9 @@ def _integrate(model, y0, mem, p, t_end, rtol, atol, h_max, max_steps, rec, n_gr
                 event_room -= 1
             _rhs(model, t, y, p, mem, k1)
             if code & EVENT_REVERSAL:
-                # the new branch starts with an infinite presliding stiffness: restart small
-                h = max(h * 1e-3, 1e-14 * max(t, 1.0))
+                # the new branch starts with an infinite presliding stiffness: restart at a
+                # tenth (a thousandth cost a fifth of a chattering loop's steps in regrowth)
+                h = max(h * 0.1, 1e-14 * max(t, 1.0))
             continue
         t += h
         y[:] = ynew
