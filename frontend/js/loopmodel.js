@@ -12,6 +12,8 @@ import {
 } from "./integrator.js";
 import { breakawayForce } from "./model.js";
 
+/** The series of a run's answer, one value per recorded time (POST /api/loop's). */
+export const LOOP_SERIES = ["t", "r", "x", "v", "u", "F", "e"];
 /** Steps the page integrates at most for one live frame (about 10 ms); beyond, the server. */
 export const LIVE_MAX_STEPS = 40_000;
 /** loop_model.RUNAWAY_FACTOR: |e| beyond this many reference scales ends the run. */
@@ -213,7 +215,7 @@ export function loopExperiment(body, defaults, maxSteps = LIVE_MAX_STEPS) {
   const model = loopModel(plant, ctl, ref, comp, RUNAWAY_FACTOR * scale);
   const atol = [travel, travel / timeScale, ctl.Ki > 0 ? level / ctl.Ki : travel * timeScale]
     .map((value) => 1e-3 * RTOL * value);
-  const out = { t: [], r: [], x: [], v: [], u: [], F: [], e: [], code: [] };
+  const out = { ...Object.fromEntries(LOOP_SERIES.map((name) => [name, []])), code: [] };
   const at = { r: 0.0, rDot: 0.0 };
   const record = (t, y, code) => {
     const { r } = referenceAt(t, ref, at);

@@ -3,7 +3,7 @@
 // (result null when the run is the server's to make, or when it failed here: the
 // server then says what is wrong).
 
-import { loopExperiment } from "./loopmodel.js";
+import { LOOP_SERIES, loopExperiment } from "./loopmodel.js";
 
 self.onmessage = ({ data: { id, body, defaults } }) => {
   let result;
@@ -12,5 +12,12 @@ self.onmessage = ({ data: { id, body, defaults } }) => {
   } catch {
     result = null;
   }
-  self.postMessage({ id, result });
+  // the series travel as transferred Float64Arrays: copying 14,000 numbers as plain
+  // arrays took 0.8 ms here and 0.8 ms on the page's side of each live frame
+  const buffers = [];
+  for (const name of result ? LOOP_SERIES : []) {
+    result[name] = Float64Array.from(result[name]);
+    buffers.push(result[name].buffer);
+  }
+  self.postMessage({ id, result }, buffers);
 };
