@@ -69,7 +69,12 @@ function showNumbers(result, state) {
   sentence.dataset.whatifs = cached || !wanted ? "done" : "pending";
   // read out once the hand rests, not at every live frame
   sentence.setAttribute("aria-busy", String(app.busy));
-  fillTable(result, state);
+  // the table under the plots once the hand rests too: rebuilding its rows at every live
+  // frame laid the page out anew (a millisecond a frame); meanwhile it is dimmed
+  const phases = $("loop-phases");
+  phases.dataset.stale = String(app.busy);
+  phases.setAttribute("aria-busy", String(app.busy));
+  if (!app.busy) fillTable(result, state);
   if (wanted && !cached && !app.busy) askWhatIfs(state, result, key);
   if (!wanted || cached) settled();
 }

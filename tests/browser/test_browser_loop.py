@@ -136,6 +136,45 @@ def test_moving_ki_redraws_the_loop_live_and_its_sentence(explorer):
     assert sentence(explorer).startswith("The loop hunts")
 
 
+#: One input on a slider, as a hand moving it (no release), then the loop's next frame:
+#: what the page shows at that frame, read in the same task.
+MOVE_AND_READ = """async ([slider, value]) => {
+  const plots = document.getElementById('plots');
+  const frame = plots.dataset.loopFrame;
+  const range = document.getElementById(slider + '-range');
+  range.value = String(value);
+  range.dispatchEvent(new Event('input', {bubbles: true}));
+  while (plots.dataset.loopFrame === frame) await new Promise((resolve) => requestAnimationFrame(resolve));
+  const phases = document.getElementById('loop-phases');
+  return {ready: plots.dataset.ready, stale: phases.dataset.stale, busy: phases.getAttribute('aria-busy'),
+    rows: document.querySelectorAll('#loop-phases-table tbody tr').length,
+    shown: window.breakaway.loopParams().Fs, sentence: document.getElementById('loop-explain').textContent};
+}"""
+
+
+def test_the_phase_table_waits_for_the_hand_to_rest_and_says_it_is_stale(explorer):
+    explorer.open("?sim=0")
+    page = explorer.page
+    before = loop_ready(explorer)
+    page.evaluate("document.getElementById('card-loop').scrollIntoView()")
+    rows = page.locator("#loop-phases-table tbody tr")
+    assert rows.count() == len(before["stick_phases"]) and rows.count() > 0
+    position = page.evaluate("Number(document.getElementById('Fs-range').value)")
+    moving = page.evaluate(MOVE_AND_READ, ["Fs", position + 60])
+    # the plots and the sentence show the new Fs at once; the table keeps the rows it had,
+    # dimmed and marked busy, while the hand moves
+    assert moving["ready"] == "false" and moving["shown"] == explorer.state()["Fs"] > DEFAULTS["Fs"]
+    assert moving["stale"] == "true" and moving["busy"] == "true"
+    assert moving["rows"] == len(before["stick_phases"])
+    page.evaluate("document.getElementById('Fs-range').dispatchEvent(new Event('change', {bubbles: true}))")
+    after = loop_ready(explorer)
+    assert after["params"]["Fs"] == moving["shown"]
+    assert page.evaluate("document.getElementById('loop-phases').dataset.stale") == "false"
+    assert rows.count() == len(after["stick_phases"]) != len(before["stick_phases"])
+    last = rows.nth(rows.count() - 1).locator("td").all_inner_texts()
+    assert float(last[3]) == pytest.approx(after["stick_phases"][-1]["u_ba"], rel=1e-3)
+
+
 def test_a_friction_slider_moves_the_loop_live_and_fs_equal_fc_settles_it(explorer):
     explorer.page.add_init_script(RECORD)
     explorer.open("?sim=0")
