@@ -2,6 +2,8 @@
 // slider <-> value maps (logarithmic where a range spans decades), and the checks of
 // MODEL.md §1 that decide whether a state may be sent at all.
 
+import { F_HAT_CHOICES } from "./model.js";
+
 const STEPS = 1000; // slider positions of a log or linear control
 
 /**
@@ -24,7 +26,6 @@ export function paramSpec(name) {
   return PARAMS.find((spec) => spec.name === name);
 }
 
-export const F_HAT_CHOICES = ["Fc", "Fs", "avg", "self"];
 export const MIN_ABS_DELTA = 0.05;
 
 /** Round to `digits` significant digits (what a slider move writes into the box). */

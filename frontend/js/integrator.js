@@ -26,6 +26,7 @@ export const H_MAX_FRACTION = 1e-3;
 export const EVENT_REVERSAL = 1;
 export const EVENT_BREAKAWAY = 2;
 export const EVENT_STICK = 4;
+export const EVENT_COMPENSATION = 8;
 /** integrator._SCAN_POINTS: the guard's look inside each step for a short excursion. */
 const SCAN_POINTS = 4;
 

@@ -7,10 +7,10 @@
 // Python run. A run over LIVE_MAX_STEPS steps is left to the server: null.
 
 import {
-  EVENT_BREAKAWAY, EVENT_REVERSAL, EVENT_STICK, RTOL, STATUS_STEP_LIMIT, STATUS_STOP, gBranch,
-  integrate, preslidingForce, validStribeck,
+  EVENT_BREAKAWAY, EVENT_COMPENSATION, EVENT_REVERSAL, EVENT_STICK, RTOL, STATUS_STEP_LIMIT,
+  STATUS_STOP, gBranch, integrate, preslidingForce, validStribeck,
 } from "./integrator.js";
-import { breakawayForce } from "./model.js";
+import { F_HAT_CHOICES, breakawayForce } from "./model.js";
 
 /** The series of a run's answer, one value per recorded time (POST /api/loop's). */
 export const LOOP_SERIES = ["t", "r", "x", "v", "u", "F", "e"];
@@ -20,8 +20,6 @@ export const LIVE_MAX_STEPS = 40_000;
 const RUNAWAY_FACTOR = 100.0;
 /** The server's limit on sine periods in a run (loop_schemas.MAX_SINE_PERIODS). */
 const MAX_SINE_PERIODS = 200;
-const EVENT_COMPENSATION = 8;
-const F_HATS = ["Fc", "Fs", "avg", "self"];
 
 /** r(t) [m] and ṙ(t) [m/s] of the reference (loop_model._reference), written into
  *  `at` ({r, rDot}): the right-hand side asks seven times a step, so nothing is made. */
@@ -184,7 +182,7 @@ function resolve(body, defaults) {
   const F_hat = body.F_hat ?? "avg";
   const ok = validStribeck(plant) && validStribeck(comp.params)
     && [plant.s, plant.m, duration].every((value) => Number.isFinite(value) && value > 0)
-    && plant.z_ba > 0 && plant.z_ba < 1 && F_HATS.includes(F_hat)
+    && plant.z_ba > 0 && plant.z_ba < 1 && F_HAT_CHOICES.includes(F_hat)
     && [ctl.Kp, ctl.Ki, ctl.Kd, comp.scale].every((value) => Number.isFinite(value) && value >= 0)
     && (ctl.u_max === null || (Number.isFinite(ctl.u_max) && ctl.u_max > 0))
     && ["step", "ramp", "sine"].includes(ref.kind)

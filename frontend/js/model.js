@@ -6,6 +6,9 @@
 //   search. tests/browser/test_browser_model_js.py holds it to the Python functions
 //   (relative 1e-12). The server's frame stays the one the settled plots are drawn from.
 
+/** The steady levels F̂ E12 and E13 may be read with (params.F_HAT_CHOICES). */
+export const F_HAT_CHOICES = ["Fc", "Fs", "avg", "self"];
+
 /** The frame's grids (frame.py FRAME_GRID and its defaults). */
 export const GRID = {
   stribeck: 400, loop: 2000, phase: 200, breakaway: 200,
@@ -199,7 +202,7 @@ export function modelFrame(p) {
   }));
   const kGrid = linspace(GRID.kMin, GRID.kMax, GRID.breakaway);
   const breakaway = { k: kGrid };
-  for (const fHat of ["Fc", "Fs", "avg", "self"]) {
+  for (const fHat of F_HAT_CHOICES) {
     breakaway[fHat] = kGrid.map((k) => breakawayForce(k, p, fHat));
   }
   return {

@@ -7,9 +7,9 @@
 // the server: null.
 
 import {
-  RTOL, STATUS_END, STATUS_STEP_LIMIT, integrate, preslidingForce, validStribeck,
+  EVENT_REVERSAL, RTOL, STATUS_END, STATUS_STEP_LIMIT, integrate, preslidingForce, validStribeck,
 } from "./integrator.js";
-import { breakawayForce } from "./model.js";
+import { F_HAT_CHOICES, breakawayForce } from "./model.js";
 
 /** Steps the page integrates at most for one live frame (a few ms); beyond, the server. */
 export const LIVE_MAX_STEPS = 20_000;
@@ -36,7 +36,7 @@ function rampModel(p) {
       mem[0] = y[0];
       mem[1] = F;
       mem[2] = -mem[2];
-      return 1;
+      return EVENT_REVERSAL;
     },
     stop: (t, y) => (mem[2] > 0 ? p.s * Math.abs(y[0] - mem[0]) - p.z_ba : -1.0),
     stopRises: true,
@@ -100,7 +100,7 @@ function preslidingZ(x, v, s) {
  *  check_fraction): a body that fails them goes to the server, which says which field. */
 function valid(p) {
   return validStribeck(p) && [p.k, p.s, p.m].every((value) => Number.isFinite(value) && value > 0)
-    && p.z_ba > 0 && p.z_ba < 1 && ["Fc", "Fs", "avg", "self"].includes(p.F_hat);
+    && p.z_ba > 0 && p.z_ba < 1 && F_HAT_CHOICES.includes(p.F_hat);
 }
 
 /**

@@ -199,14 +199,11 @@ export function drawView(id, { now = false } = {}) {
   // first on the live canvases at once, then Plotly in a task of its own; the view's
   // words after its plots: a canvas's first text after a change to the page's text waits
   // for the page's styles to be recomputed (0.7 ms, once a canvas)
-  const plots = Object.entries(shown);
-  if (now && plots.map(([plot, figure], i) => drawLiveNow(plot, figure,
-    i === 0 ? view.redraws ?? [] : [])).every(Boolean)) {
-    view.onDraw?.(result.value, app.state);
-    return new Promise((resolve) => { setTimeout(() => settled().then(resolve, resolve)); });
-  }
+  const drawnLive = now && Object.entries(shown).map(([plot, figure], i) => drawLiveNow(plot,
+    figure, i === 0 ? view.redraws ?? [] : [])).every(Boolean);
   view.onDraw?.(result.value, app.state);
-  return settled();
+  if (!drawnLive) return settled();
+  return new Promise((resolve) => { setTimeout(() => settled().then(resolve, resolve)); });
 }
 
 // a request for a state whose curves were left is dropped (the new state's is asked for
