@@ -328,21 +328,20 @@ def _quantised_x(counts):
 
 def coarse_encoder(seed: int = 0, rows: int = 6000, spikes=False) -> Recording:
     """A motor shaft driven back and forth through 60–200 counts or 1–4 revolutions by
-    its velocity loop (strokes of half cosines of 0.5–4 s), read by an encoder of 10 to
-    4096 counts per revolution logged in rad or degrees; a torque sensor with 0.5–2 %
-    noise. Friction: a Stribeck drop of 10–40 % and viscous σ·v rising by 30–80 % of Fc
+    its velocity loop (strokes of half cosines of 0.2–3 s, short rests), logged at 500 Hz
+    from an encoder of 10 to 4096 counts per revolution in rad or degrees; a torque
+    sensor with 0.5–2 % noise (``spikes``: and 5–30 spikes). Friction: a Stribeck drop of 10–40 % and viscous σ·v rising by 30–80 % of Fc
     at the top speed. Report: viscous, Fc and σ within tolerance, quantised x, the
     noise floor at the sensor's noise (not at what the counts add)."""
     rng = np.random.default_rng(seed)
     encoder = rotary_encoder(rng, 10, 4096)
     travel = max(encoder.count * rng.uniform(60, 200), 2 * math.pi * rng.uniform(1, 4))
-    top = travel / rng.uniform(1.5, 4.0)  # a stroke of 0.2–0.6 travel in 0.5–4 s
+    top = travel / rng.uniform(0.6, 1.5)  # a stroke of 0.2–0.6 travel in 0.2–3 s
+    t = np.arange(rows) / 500.0
+    x, v = half_cosine_strokes(rng, t, travel, top, hold=0.2)
     truth = {**_base_levels(rng, (0.05, 0.3)), "V": top * rng.uniform(0.02, 0.1),
              "s": 1.0 / rng.uniform(2e-4, 2e-3)}
-    truth["sigma"] = rng.uniform(0.3, 0.8) * truth["Fc"] / top
-    rate = float(rng.choice([500.0, 1000.0]))
-    t = np.arange(rows) / rate
-    x, v = half_cosine_strokes(rng, t, travel, top, hold=0.3)
+    truth["sigma"] = rng.uniform(0.3, 0.8) * truth["Fc"] / np.max(np.abs(v))
     friction = driven_friction(x, v, truth)
     channel = _sensor(rng, truth["Fc"], **(_spikes(rng, truth["Fc"]) if spikes else {}))
     F = channel.record(t, friction, rng)

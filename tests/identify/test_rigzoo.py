@@ -22,7 +22,7 @@ from breakaway.identify import identify, parse_csv
 from breakaway.steady import stribeck_magnitude
 
 from . import rigzoo
-from .expectations import Expectation, failures
+from .expectations import Expectation, failures, verdict_params
 
 FAMILIES = rigzoo.families()
 STEADY = ("gearbox-steady", "offset-steady", "flat-steady")
@@ -36,15 +36,7 @@ def _seeds(family):
     return (0, 1, 2) if family in STEADY else (0,)
 
 
-def _cases():
-    for family in FAMILIES:
-        for seed in _seeds(family):
-            gap = KNOWN_GAPS.get((family, seed))
-            marks = [pytest.mark.xfail(strict=True, reason=gap)] if gap else []
-            yield pytest.param(family, seed, marks=marks, id=f"{family}-{seed}")
-
-
-@pytest.mark.parametrize("family,seed", list(_cases()))
+@pytest.mark.parametrize("family,seed", list(verdict_params(FAMILIES, _seeds, KNOWN_GAPS)))
 def test_the_report_says_what_the_rig_holds(family, seed):
     recording = FAMILIES[family](seed)
     report = identify(parse_csv(recording.csv))
