@@ -42,13 +42,13 @@ SHAPE_E4, SHAPE_EXPONENTIAL = 0, 1
 E4_LINEAR_BELOW = 1e-4
 
 # the friction parameter vector
-P_FC, P_FS, P_FC_NEG, P_FS_NEG, P_V, P_DELTA, P_S, P_SHAPE, P_DAMPING, P_SIGMA = range(10)
+P_FC, P_FS, P_FC_NEG, P_FS_NEG, P_V, P_DELTA, P_S, P_SHAPE, P_DAMPING, P_SIGMA, P_ZETA = range(11)
 # the state vector: position, velocity, x_r, F_r, direction, last friction
 S_X, S_V, S_XR, S_FR, S_D, S_F = range(6)
 
 
 def friction_params(Fc, Fs, V, delta, s, mass, shape=SHAPE_E4, Fc_neg=None, Fs_neg=None,
-                    sigma=0.0):
+                    sigma=0.0, damping_ratio=1.0):
     """The parameter vector of :func:`advance` (levels per direction, the viscous
     coefficient ``sigma``; SI or rotary).
 
@@ -56,13 +56,17 @@ def friction_params(Fc, Fs, V, delta, s, mass, shape=SHAPE_E4, Fc_neg=None, Fs_n
     starts at a reversal from one level to the other, ``2·Fs·s`` times the shape's
     slope at its start. A reversal inside a branch then never rings into another
     reversal (each would start a new branch, MODEL.md §3, and move the record off the
-    law it is meant to follow).
+    law it is meant to follow). A ``damping_ratio`` below 1 keeps the damping force (a
+    term outside the library) small where a fast body crosses presliding, at the cost
+    of ringing reversals far below an encoder's count; the sub-steps stay those of the
+    critical damping.
     """
     Fc_neg = Fc if Fc_neg is None else Fc_neg
     Fs_neg = Fs if Fs_neg is None else Fs_neg
     slope = 3.0 if shape == SHAPE_EXPONENTIAL else 1.0 - math.log(E4_LINEAR_BELOW)
     damping = 2.0 * math.sqrt(2.0 * max(Fs, Fs_neg) * s * slope * mass)
-    return np.array([Fc, Fs, Fc_neg, Fs_neg, V, delta, s, shape, damping, sigma], dtype=float)
+    return np.array([Fc, Fs, Fc_neg, Fs_neg, V, delta, s, shape, damping, sigma, damping_ratio],
+                    dtype=float)
 
 
 def rest_state():
@@ -84,7 +88,7 @@ def friction(state, p):
     """The friction force [N]: (E6') on the current branch plus the presliding damping."""
     z = p[P_S] * abs(state[S_X] - state[S_XR])
     shape = _shape(z, int(p[P_SHAPE]))
-    return elastic(state, p, shape) + p[P_DAMPING] * state[S_V] * (1.0 - shape)
+    return elastic(state, p, shape) + p[P_DAMPING] * p[P_ZETA] * state[S_V] * (1.0 - shape)
 
 
 @njit(cache=True)
