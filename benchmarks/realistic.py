@@ -27,6 +27,7 @@ import fnmatch
 import json
 import math
 import os
+import re
 import statistics
 import sys
 import time
@@ -61,15 +62,24 @@ MISS_KINDS = (
     ("determined above", "determined beyond data"),
     ("determined, expected not determined", "determined, should not be"),
     ("not determined", "undetermined"),
-    (", expected ", "value off"),
     ("unexplained is", "unexplained flag"),
     ("residual_structure", "structure"),
+    (", expected ", "value off"),
 )
 
 
 def miss_kind(message: str) -> str:
     """The kind of one failure message (see :data:`MISS_KINDS`)."""
     return next((kind for phrase, kind in MISS_KINDS if phrase in message), "other")
+
+
+def refusal(message: str) -> str | None:
+    """The reason a required effect was not named, its numbers blanked (``#``), so that
+    the same rule counts once; None for other failures."""
+    if " not named (" not in message:
+        return None
+    reason = message.split(" not named (", 1)[1][:-1]
+    return re.sub(r"[-+]?\d[\d.]*(?:e[-+]?\d+)?", "#", reason)[:70]
 
 
 def plain_floor(csv: str) -> float:
@@ -182,6 +192,16 @@ def main() -> int:
     if below_target:
         print("below 90 %: " + ", ".join(below_target))
     wrong = [r for r in results if r["failures"]]
+    print("\nWhy required effects went unnamed (the engine's reasons, numbers as #):")
+    for name in chosen:
+        reasons = {}
+        for r in results:
+            if r["family"] == name:
+                for why in filter(None, map(refusal, r["failures"])):
+                    reasons[why] = reasons.get(why, 0) + 1
+        if reasons:
+            top = sorted(reasons.items(), key=lambda kv: -kv[1])[:3]
+            print(f"- {name}: " + "; ".join(f"{why} × {count}" for why, count in top))
     if wrong:
         print("\nMisses:")
         for r in wrong:
