@@ -22,7 +22,7 @@ hidden true signals the generator tests check. :func:`families` lists them by na
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 from scipy.interpolate import PchipInterpolator
@@ -126,8 +126,10 @@ class ForceChannel:
     hum_hz: float = 50.0
     spikes: int = 0
     spike_size: float = 0.0
+    parts: dict = field(default_factory=dict, repr=False)
 
     def record(self, t, clean, rng):
+        """The recorded force at times ``t`` of the true force ``clean``."""
         n = clean.size
         white = self.noise * rng.standard_normal(n)
         hum = self.hum * np.sin(2 * math.pi * self.hum_hz * t + rng.uniform(0, 2 * math.pi))
@@ -165,11 +167,13 @@ def _sensor(rng, scale, noise_share=(0.005, 0.02), **disturbances) -> ForceChann
                         step=40.0 * scale / 2**16, **disturbances)
 
 
-def _hum(rng, scale_noise):
-    return {"hum": rng.uniform(2.0, 6.0) * scale_noise, "hum_hz": float(rng.choice([50.0, 60.0]))}
+def _hum(rng, noise):
+    """Mains hum of 2–6 times the sensor's ``noise`` at 50 or 60 Hz."""
+    return {"hum": rng.uniform(2.0, 6.0) * noise, "hum_hz": float(rng.choice([50.0, 60.0]))}
 
 
 def _spikes(rng, scale):
+    """5–30 spikes of 20–120 % of ``scale`` (a level of the friction)."""
     return {"spikes": int(rng.integers(5, 31)), "spike_size": rng.uniform(0.2, 0.6) * scale}
 
 
@@ -260,7 +264,7 @@ def _base_levels(rng, Fc_range, drop=(1.1, 1.4)):
     return {"Fc": Fc, "Fs": Fc * rng.uniform(*drop), "delta": rng.uniform(0.8, 2.0)}
 
 
-def driven_friction(x, v, truth, t=None, scale=None):
+def driven_friction(x, v, truth, scale=None):
     """(E6') along the driven path x with the steady target d·g·scale + viscous, where
     ``truth`` holds Fc, Fs, V, delta, s and optionally sigma (with n: σ·sgn(v)·|v|ⁿ)
     and ``scale`` multiplies g per sample (a drift, a position dependence)."""
@@ -287,19 +291,9 @@ def _timeseries_csv(t, encoder, x_logged, F, force_format, source, rotary):
 def in_file_units(truth, per_unit):
     """The truth in a file's units when its positions are logged per ``per_unit`` of
     true travel (degrees: V, s, σ, m_e per degree; levels and α unchanged)."""
-    out = dict(truth)
-    if per_unit == 1.0:
-        return out
-    for name in ("V",):
-        if name in out:
-            out[name] = out[name] / per_unit
-    if "s" in out:
-        out["s"] = out["s"] * per_unit
-    if "sigma" in out:
-        out["sigma"] = out["sigma"] * per_unit ** out.get("n", 1.0)
-    if "m_e" in out:
-        out["m_e"] = out["m_e"] * per_unit
-    return out
+    scale = {"V": 1.0 / per_unit, "s": per_unit, "m_e": per_unit,
+             "sigma": per_unit ** truth.get("n", 1.0)}
+    return {name: value * scale.get(name, 1.0) for name, value in truth.items()}
 
 
 def _expect(required, truth, F, speed, *, allowed=(), warnings=(), close=(), tol=None,
