@@ -7,7 +7,7 @@ it): by default in ``../shared/realdata-dev`` beside the checkout, or where
 ``--data DIR`` or the environment variable ``BREAKAWAY_REALDATA`` say. A new user has no
 such folder: the script then says so and exits 0.
 
-Run: .venv/bin/python benchmarks/realdata.py [-j 2] [--data DIR] [--save DIR]
+Run: .venv/bin/python benchmarks/realdata.py [-j 2] [--data DIR] [--save DIR] [--timeout S]
 """
 
 from __future__ import annotations
@@ -54,6 +54,9 @@ def main() -> int:
                         "csv/); default $BREAKAWAY_REALDATA or ../shared/realdata-dev")
     parser.add_argument("-j", type=int, default=2, help="parallel fits (default 2)")
     parser.add_argument("--save", metavar="DIR", help="write each report to DIR")
+    parser.add_argument("--timeout", type=int, default=240,
+                        help="seconds per fit before the judge calls it a failure (default 240; "
+                        "more on a machine others share)")
     args = parser.parse_args()
 
     folder = Path(args.data or os.environ.get("BREAKAWAY_REALDATA") or DEFAULT)
@@ -64,7 +67,8 @@ def main() -> int:
               "--data or BREAKAWAY_REALDATA.")
         return 0
     command = [sys.executable, str(judge), str(recordings), "--cmd", breakaway_command(),
-               "-j", str(args.j)] + (["--save", args.save] if args.save else [])
+               "-j", str(args.j), "--timeout", str(args.timeout)] \
+        + (["--save", args.save] if args.save else [])
     print(f"judging {sum(1 for _ in recordings.glob('*.csv'))} recordings in {recordings} "
           f"with {breakaway_command()} (-j {args.j}); load average before: "
           f"{', '.join(f'{x:.2f}' for x in os.getloadavg())}", flush=True)
