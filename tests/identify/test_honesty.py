@@ -3,6 +3,8 @@ confidently wrong. Each case is made by seeded code in :mod:`tests.identify.case
 
 from __future__ import annotations
 
+import math
+
 import pytest
 
 from breakaway.identify import identify
@@ -108,15 +110,23 @@ def test_encoder_counts_are_not_reversals(reports):
     assert_honest_uncertainties(report)
 
 
-def test_a_commanded_force_has_a_real_noise_floor(reports):
+def expected_error(report):
+    """What the residual can fall to: the force's noise and what x's resolution sets."""
+    return math.hypot(report["noise_floor"], report["input_floor"])
+
+
+def test_a_commanded_force_has_its_error_in_the_input_floor(reports):
     report, _ = reports("force_command")
     assert "force-is-command" in codes(report, "F")
-    assert report["noise_floor"] > 0.01  # the noise of x, seen through the model [N]
+    # the force itself is noise-free: its floor is its resolution, and the noise of x,
+    # seen through the model, is the input floor [N]
+    assert report["noise_floor"] < 0.01
+    assert report["input_floor"] > 0.01
     assert report["effects"] == []
     # the residual is that noise: no structure is claimed (the residual's differences,
     # 0.06 N, under-read it 4-fold, and the report said "unexplained")
     assert report["unexplained"] is False
-    assert report["error_after"] <= 1.3 * report["noise_floor"]
+    assert report["error_after"] <= 1.3 * expected_error(report)
     for name in ("Fc", "Fs"):
         assert report["final"]["params"][name] == pytest.approx({"Fc": 10, "Fs": 15}[name], rel=0.05)
     assert_honest_uncertainties(report)
@@ -129,7 +139,7 @@ def test_an_effect_under_a_commanded_force_is_found_alone(reports, effect):
     report, truth = reports("force_command", effect=effect, seed=5)
     assert report["effects"] == [effect]
     assert report["unexplained"] is False
-    assert report["error_after"] <= 1.3 * report["noise_floor"]
+    assert report["error_after"] <= 1.3 * expected_error(report)
 
 
 def test_no_ripple_longer_than_the_travel_allows(reports):

@@ -41,6 +41,20 @@ def test_counts_converted_to_degrees_and_printed_are_still_a_step(decimals):
     assert quantum(printed) == pytest.approx(count, rel=1e-4)
 
 
+@pytest.mark.parametrize("counts_per_turn", [16_384, 40_000, 65_536])
+def test_degrees_printed_then_converted_to_rad_are_still_a_step(counts_per_turn):
+    # counts logged in degrees with four decimals, then converted to rad: no printed
+    # digit of the rad column shows the rounding, but the one-count gaps come as two
+    # values a rounding unit apart (3 and 4 units for a count of 3.5 units)
+    count_deg = 360 / counts_per_turn
+    rng = np.random.default_rng(counts_per_turn)
+    counts = np.cumsum(rng.integers(-1, 3, 3000))
+    counts[2000:] += np.cumsum(rng.integers(0, 300, 1000))  # slips of many counts
+    rad = np.deg2rad(np.round(counts * count_deg, 4))
+    assert printed_unit(rad) < 1e-4 * np.deg2rad(count_deg)
+    assert quantum(rad) == pytest.approx(np.deg2rad(count_deg), rel=1e-3)
+
+
 def test_printed_unit_and_a_continuous_column():
     rng = np.random.default_rng(2)
     walk = np.cumsum(rng.standard_normal(5000)) * 1e-3

@@ -194,6 +194,16 @@ class Derivatives:
     #: the moving samples, where g of E2 is steep) [s]: no lag shorter than it can be
     #: told from how v is taken
     velocity_span: float = 0.0
+    #: the std of a [m/s²] that the resolution of x alone causes at the chosen window
+    acceleration_noise: float = 0.0
+
+    @property
+    def acceleration_resolved(self) -> bool:
+        """Whether a stands above what the resolution of x makes of it (its RMS at
+        least :data:`RESOLVED_RATIO` times that noise): an inertia needs it."""
+        noise = self.acceleration_noise
+        return not noise > 0 or \
+            math.sqrt(float(np.mean(self.a**2))) >= RESOLVED_RATIO * noise
 
     def entry(self) -> dict:
         """The report's ``derivatives`` object (MODEL.md §8), with how v was taken."""
@@ -289,6 +299,9 @@ def choose_window(t, x, resolution: float, order: int = ORDER) -> int:
     return fitting[-1]
 
 
+#: An acceleration is resolved when its RMS is at least this many times the part the
+#: resolution of x makes of it.
+RESOLVED_RATIO = 3.0
 #: Samples of the local quadratic whose residual measures the error of x.
 ERROR_WINDOW = 9
 
@@ -350,7 +363,11 @@ def derivatives(t, x, quantum: float = 0.0, noise: float = 0.0, blocks=None,
     spans = np.concatenate([part[1] for part in parts])
     a = np.concatenate([local_fit(t[i:j], x[i:j], window)[1] if j - i >= WINDOWS[0]
                         else np.gradient(v[i:j], t[i:j]) for i, j in blocks])
-    return Derivatives(v, a, "savgol", window, ORDER, _span(v, spans))
+    first, last = max(blocks, key=lambda block: block[1] - block[0])
+    noise_a = acceleration_noise(window, position_error(t[first:last], x[first:last], quantum,
+                                                        noise),
+                                 float(np.median(np.diff(t[first:last]))))
+    return Derivatives(v, a, "savgol", window, ORDER, _span(v, spans), noise_a)
 
 
 def _span(v, spans) -> float:

@@ -33,6 +33,10 @@ _MAX_DECIMALS = 12
 _PRINTED_STEPS = 3
 #: Gaps within this factor of the smallest are steps of one count.
 _ONE_STEP = 1.5
+#: Gaps up to these many steps refine the step before every gap is counted.
+_REFINING_REACH = (10.0, 100.0, 1000.0)
+#: One-count gaps closer than this share of a gap are the same printed value.
+_SAME_GAP = 1e-3
 
 
 def printed_unit(values) -> float:
@@ -66,7 +70,9 @@ def quantum(values) -> float:
     -------
     float
         ``q`` [same unit] when at least 98 % of the distinct values lie on that grid
-        (within 5 % of a step, or the printed rounding when that is coarser), and q is
+        (within 5 % of a step, or the printed rounding when that is coarser: the last
+        printed digit, or the unit the one-count gaps show when the step was printed in
+        another unit, :func:`_rounding_unit`), and q is
         either coarser than the printed digits or, when it is their unit, not negligible
         against the typical sample-to-sample change; 0 otherwise.
     """
@@ -80,24 +86,45 @@ def quantum(values) -> float:
     if gaps.size < 2:
         return 0.0
     one_step = gaps[gaps < _ONE_STEP * gaps.min()]
-    q0 = float(np.median(one_step))
+    # the mean, not the median: a step printed in another unit's digits comes as two
+    # gap values (3 and 4 units for a step of 3.5), and the mean is the step
+    q0 = float(np.mean(one_step))
+    for reach in _REFINING_REACH:
+        # each gap is a whole number of steps; a gap of many steps is counted right only
+        # with a step this precise, so q is refined on the short gaps first
+        short = gaps[gaps < reach * q0]
+        q0 = float(np.sum(short) / max(np.sum(np.round(short / q0)), 1.0))
     counts = np.concatenate([[0.0], np.cumsum(np.round(np.diff(levels) / q0))])
     q, offset = np.polyfit(counts, levels, 1)
     if not q > 0:
         return 0.0
-    unit = printed_unit(values)
+    unit = max(printed_unit(values), _rounding_unit(one_step))
     # printed to a unit finer than the step, each value is off the grid by its rounding
     tolerance = max(0.05 * q, 0.6 * unit) if unit < 0.5 * q else 0.05 * q
     on_grid = np.abs(levels - (offset + q * counts)) <= tolerance
     if np.mean(on_grid) < 0.98:
         return 0.0
-    if q >= _PRINTED_STEPS * unit:
+    if q >= (_PRINTED_STEPS - 1e-6) * unit:  # (3 units, up to the float error of q)
         return float(q)  # a grid coarser than the digits: the data's own step
     # a grid of the printed digits themselves counts only where it is coarse
     changes = np.abs(np.diff(values))
     changes = changes[changes > 0]
     typical = float(np.median(changes)) if changes.size else 0.0
     return float(q) if q >= _QUANTUM_SHARE * typical else 0.0
+
+
+def _rounding_unit(one_step) -> float:
+    """The unit a step was rounded to when it was printed in another unit than the
+    column's (encoder counts logged in degrees with four decimals, then converted to
+    rad): one-count gaps then take two or more values a whole rounding unit apart
+    (3 and 4 units for a count of 3.5 units). 0 when the gaps take one value."""
+    values = np.sort(np.asanyarray(one_step, dtype=float))
+    if values.size < 2:
+        return 0.0
+    jumps = np.diff(values)
+    # gaps of one value differ by the conversion's float error only
+    distinct = jumps[jumps > _SAME_GAP * values[-1]]
+    return float(np.min(distinct)) if distinct.size else 0.0
 
 
 @njit(cache=True)

@@ -1,4 +1,4 @@
-"""The measurement noise, estimated without any model (MODEL.md §8 ``noise_floor``).
+"""The measurement noise, estimated without any model (the report's ``noise_floor``).
 
 - Rows that share their regressor (repeats: the same speed, or the same rate, direction
   and dwell) give the noise directly: the pooled within-group standard deviation. Where
@@ -7,15 +7,18 @@
   second and third differences; each is unbiased for white noise and too high where F
   curves, so the smaller is taken.
 - Never below the quantisation of the force column, ``q/√12``.
-- A force column that is noise-free (a commanded force: the noise sits in x) is found
-  by comparing its differences with those of the base model's residual
-  (:func:`command_floor`); the floor is then the residual's, and a warning says so.
+
+The floor is the noise of the measured force alone. A force column that is noise-free
+(a commanded force: the noise sits in x, :func:`is_command`) has the floor of its own
+resolution. What the resolution of x adds to the prediction error through the model is
+a different thing, the ``input_floor`` (:func:`input_floor`): it is reported beside the
+floor, never added to it, and never a reason to refuse an effect.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from math import comb
 
 import numpy as np
@@ -33,6 +36,9 @@ COMMAND_RELATIVE = 1e-6
 #: A force column with no noise above its resolution whose changes turn less often than
 #: this is programmed (noise turns half of the time or more).
 COMMAND_TURNS = 0.1
+#: ... and whose changes turn less often than this is programmed whatever its
+#: resolution (a programmed ramp less a model of the position it reads).
+SMOOTH_TURNS = 0.02
 #: Changes a column needs before their turns are counted.
 MIN_CHANGES = 20
 #: A force whose fast part a filter of x's explains this well is computed from x ...
@@ -47,9 +53,10 @@ FAST_WINDOW = 9
 class NoiseFloor:
     """The estimate and how it was made.
 
-    ``method`` is ``"replicates"``, ``"differences"``, ``"quantisation"`` or
-    ``"residual differences (force is a command)"``; ``quantum_F`` the step of the
-    force column (0 if none); ``smooth_F`` the differences estimate of F alone.
+    ``method`` is ``"replicates"``, ``"differences"`` or ``"quantisation"``;
+    ``quantum_F`` the step of the force column (0 if none); ``smooth_F`` the differences
+    estimate of F alone; ``command`` whether the force column is a command
+    (:func:`is_command`).
     """
 
     value: float
@@ -58,25 +65,6 @@ class NoiseFloor:
     smooth_F: float = math.nan
     replicated_rows: int = 0
     command: bool = False
-    from_x: float = 0.0  # the part the resolution of x adds through the model [N]
-
-    def at_least_position_part(self, from_x: float) -> "NoiseFloor":
-        """The floor of a commanded force: the larger of this one (the residual's
-        differences, which under-read a residual correlated along t) and the force error
-        that the noise of x causes through the model, which is the whole residual when
-        the model is right."""
-        if not from_x > self.value:
-            return replace(self, from_x=from_x)
-        return replace(self, value=from_x, from_x=from_x,
-                       method="noise of x through the model (force is a command)")
-
-    def with_position_part(self, from_x: float) -> "NoiseFloor":
-        """The floor with the force error that the resolution of x causes added in
-        quadrature (an encoder's ±q/2, a noisy x's std, propagated by the model)."""
-        if not from_x > 0:
-            return self
-        return replace(self, value=math.sqrt(self.value**2 + from_x**2), from_x=from_x,
-                       method=self.method + " + resolution of x")
 
 
 def _replicate_sigma(F, keys, nuisance=None):
@@ -224,44 +212,76 @@ def computed_from_x(t, x, F) -> float:
 
 def programmed_force(problem, noise: NoiseFloor) -> bool:
     """Whether the force column is a programme's or a controller's output, not a
-    measurement (see :func:`command_floor`): such a force has no glitches, and a
+    measurement (see :func:`is_command`): such a force has no glitches, and a
     sharp change in it is what was commanded."""
     if problem.kind == "breakaway" or noise.method == "replicates":
         return False
     e_F = noise.smooth_F
     resolution = max(printed_unit(problem.measured), noise.quantum_F)
-    if math.isfinite(e_F) and e_F <= resolution and turn_share(problem.measured) < COMMAND_TURNS:
+    turns = turn_share(problem.measured)
+    if turns < SMOOTH_TURNS:
+        # its changes (nearly) never turn: a programme, less a model of x's at most (a
+        # ramp less a gravity model); a sensor's noise turns them half of the time, and
+        # noise too small to turn them is too small to matter
+        return True
+    if math.isfinite(e_F) and e_F <= resolution and turns < COMMAND_TURNS:
         return True
     return problem.kind == "timeseries" and computed_from_x(
         problem.t, problem.recorded_x, problem.measured) >= CONTROLLER_R2
 
 
-def command_floor(problem, noise: NoiseFloor, residual) -> NoiseFloor | None:
-    """The floor when the force column is a noise-free command, else None.
+def is_command(problem, noise: NoiseFloor, residual) -> bool:
+    """Whether the force column is a noise-free command (the measurement noise sits
+    in x).
 
     The force is a command when it carries no noise above its own resolution: its
     differences estimate is at most its last printed digit or its steps, and it turns
     (goes up, then down) only where the programme does (:func:`turn_share` below
     :data:`COMMAND_TURNS`): a programmed ramp, a setpoint held by a PLC, a DAC's steps.
     Or it is a controller's output, computed from the position it reads
-    (:func:`computed_from_x` at least :data:`CONTROLLER_R2`). Or its differences are far smaller than the base model's residual's (the residual
-    then carries the noise of x through the model), or negligible against the force
-    scale. The floor is then the residual's differences estimate (never below the
-    force quantisation); the noise of x through the model is added by the caller.
+    (:func:`computed_from_x` at least :data:`CONTROLLER_R2`). Or its differences are
+    far smaller than the base model's ``residual``'s, or negligible against the force
+    scale.
     """
     if problem.kind == "breakaway" or noise.method == "replicates":
-        return None
+        return False
     e_F = noise.smooth_F
     e_r = difference_sigma(residual, orderings(problem))
     if not (math.isfinite(e_F) and math.isfinite(e_r)):
-        return None
+        return False
     quiet = e_r > 0 and (e_F < COMMAND_RATIO * e_r or e_F < COMMAND_RELATIVE * problem.scales.force)
-    if not (quiet or programmed_force(problem, noise)):
+    return bool(quiet or programmed_force(problem, noise))
+
+
+def input_floor(fit, noise: NoiseFloor) -> float:
+    """The share of ``fit``'s prediction error [N] that the resolution of x sets
+    (the report's ``input_floor``): the force error that re-reading the record with x's
+    step or noise causes through the model
+    (:meth:`~.models.timeseries.TimeseriesProblem.resolution_noise`); under a commanded
+    force, at least the residual's own short-range variation, which is that error seen
+    directly. Never more than what the residual leaves above the noise floor."""
+    problem = fit.problem
+    if problem.kind != "timeseries":
+        return 0.0
+    value = problem.resolution_noise(fit.params)
+    if noise.command:
+        value = max(value, difference_sigma(fit.residual(), orderings(problem)))
+    room = math.sqrt(max(fit.rmse**2 - noise.value**2, 0.0))
+    return float(min(value, room))
+
+
+def input_weights(errors, noise: NoiseFloor) -> np.ndarray | None:
+    """Each row's weight in a judgement of candidates, ``σ²/(σ² + e_i²)``: σ the noise
+    floor, e_i the row's force error [N] that x's resolution sets
+    (:meth:`~.models.timeseries.TimeseriesProblem.resolution_errors`: large just after
+    reversals, where (E6') is steep). A gain where the input makes the prediction
+    uncertain counts for less: it may be the reading of x, not friction. None where x is
+    exact (every weight 1)."""
+    if errors is None or not np.any(errors > 0):
         return None
-    value = max(e_r, noise.quantum_F / math.sqrt(12))
-    return NoiseFloor(value, "residual differences (force is a command)", noise.quantum_F,
-                      e_F, 0, command=True)
+    floor = max(noise.value, 1e-12 * float(np.max(errors)))
+    return floor**2 / (floor**2 + np.square(errors))
 
 
-__all__ = ["programmed_force", "computed_from_x", "turn_share", "NoiseFloor", "command_floor", "difference_sigma", "estimate", "noise_floor",
-           "orderings"]
+__all__ = ["NoiseFloor", "input_weights", "computed_from_x", "difference_sigma", "estimate", "input_floor",
+           "is_command", "noise_floor", "orderings", "programmed_force", "turn_share"]

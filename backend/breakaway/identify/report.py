@@ -1,4 +1,4 @@
-"""The MODEL.md §8 identification report of a :class:`~.diagnosis.Diagnosis`."""
+"""The identification report of a :class:`~.diagnosis.Diagnosis`."""
 
 from __future__ import annotations
 
@@ -37,7 +37,7 @@ def parameter_units(data, names, effects=()) -> dict[str, str]:
 
 
 def report(diagnosis: Diagnosis) -> dict:
-    """The §8 identification report as a JSON-ready dict.
+    """The identification report as a JSON-ready dict.
 
     Besides the §8 keys: each step's held-out error ``heldout``; ``units`` (of the
     columns and of every parameter, linear or rotary); ``noise_method`` (how the floor
@@ -60,6 +60,7 @@ def report(diagnosis: Diagnosis) -> dict:
         "error_before": _clean(d.base.rmse),
         "error_after": _clean(d.final.rmse),
         "heldout": {"before": _clean(d.heldout_before), "after": _clean(d.heldout_after)},
+        "input_floor": _clean(d.input_floor),
         "residual_white": bool(d.white),
         "unexplained": bool(d.unexplained),
         "warnings": list(d.warnings),

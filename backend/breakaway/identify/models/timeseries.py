@@ -21,8 +21,14 @@ _KINEMATICS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
 #: body has travelled a quarter of the presliding distance past the point where (E6')
 #: reaches the steady curve (a fit that just touches z = 1 at a stroke's end is not).
 GROSS_SLIDING_Z = 1.25
+#: A record shows the sliding curve only where the body slides at least a whole
+#: presliding distance past the point where presliding ends (z = 2): a fit whose (E6')
+#: saturates a little before the ends of closed presliding loops has not seen sliding.
+SHOWN_SLIDING_Z = 2.0
 #: Readings of the smoothed record that estimate what the resolution of x does.
 RESOLUTION_DRAWS = 4
+#: The jitter of an encoder's reading at a count boundary, in counts (its electronics).
+FLICKER = 0.25
 #: The short of the two smoothings of the record [samples] (a quick turn survives it).
 SHORT_SMOOTHING = 13
 #: A body in presliding is held when it moves slower than this percentile of its speeds
@@ -191,7 +197,20 @@ class TimeseriesProblem(Problem):
         return params["s"] * np.abs(self.x - self.x[last])
 
     def curve_speeds(self, params):
-        return np.abs(self.v[self.presliding_fraction(params) >= GROSS_SLIDING_Z])
+        z = self.presliding_fraction(params)
+        if not np.max(z, initial=0.0) >= SHOWN_SLIDING_Z:
+            return np.empty(0)
+        return np.abs(self.v[z >= GROSS_SLIDING_Z])
+
+    def sliding_each_way(self, params) -> tuple[int, int]:
+        """Rows in gross sliding (as :meth:`curve_speeds` counts them) moving positive
+        and moving negative."""
+        z = self.presliding_fraction(params)
+        if not np.max(z, initial=0.0) >= SHOWN_SLIDING_Z:
+            return 0, 0
+        sliding = z >= GROSS_SLIDING_Z
+        return int(np.count_nonzero(sliding & (self.d > 0))), \
+            int(np.count_nonzero(sliding & (self.d < 0)))
 
     def held_force(self, params):
         """The largest friction measured each way (the force less what the sensor adds:
@@ -218,17 +237,25 @@ class TimeseriesProblem(Problem):
         step at a random phase (each reading keeps its error while the body stays
         within a count, as real counts do), or with the same noise std — with the
         reversals this engine finds in such a reading. Both parts count: (E6') is
-        steepest just after a reversal, where a count of x_r moves F most. Smoothing
-        can only hide detail (a quick turn), so the path is smoothed at two scales,
-        the acceleration's window and :data:`SHORT_SMOOTHING` samples, and the larger
-        error is taken.
+        steepest just after a reversal, where a count of x_r moves F most. The path is
+        smoothed at two scales, the acceleration's window and
+        :data:`SHORT_SMOOTHING` samples, and the smaller error is taken: a smoothing
+        too long hides a quick turn, one too short keeps the steps of slow motion in
+        the "exact" path, and either only adds to the estimate.
         """
-        if self.resolution_x == 0:
-            return 0.0
-        return max(self._reading_error(params, window, seed)
-                   for window in {SHORT_SMOOTHING, self.derivatives.window})
+        return float(np.sqrt(np.mean(np.square(self.resolution_errors(params, seed)))))
 
-    def _reading_error(self, params, window: int, seed: int) -> float:
+    def resolution_errors(self, params, seed=0) -> np.ndarray:
+        """Each row's RMS force error [N] that the resolution of x causes in the model
+        (:meth:`resolution_noise`, row by row): largest just after reversals, where
+        (E6') is steep; zero for exact x."""
+        if self.resolution_x == 0:
+            return np.zeros(self.x.size)
+        return min((self._reading_errors(params, window, seed)
+                    for window in {SHORT_SMOOTHING, self.derivatives.window}),
+                   key=lambda rows: float(np.mean(np.square(rows))))
+
+    def _reading_errors(self, params, window: int, seed: int) -> np.ndarray:
         rng = np.random.default_rng(seed)
         smooth = np.concatenate([
             smooth_fit(self.t[a:b], self.recorded_x[a:b], window)[0] if b - a >= window
@@ -239,15 +266,19 @@ class TimeseriesProblem(Problem):
         errors = []
         for _ in range(RESOLUTION_DRAWS):
             if self.quantum_x > 0:
+                # a random phase of the grid, and the flicker of a count boundary: an
+                # encoder at rest near one reads either count (a quarter count of jitter)
                 phase = rng.uniform(0.0, self.quantum_x)
-                read = self.quantum_x * np.round((smooth - phase) / self.quantum_x) + phase
+                jitter = FLICKER * self.quantum_x * rng.standard_normal(smooth.size)
+                read = self.quantum_x * np.round((smooth - phase + jitter) / self.quantum_x) \
+                    + phase
             else:
                 read = smooth + self.noise_x * rng.standard_normal(smooth.size)
             # the reading goes through what this engine does with a record
             path = self.model_positions(read)
             errors.append(self.predict(params, path - self.x,
                                        directions=self.kinematic_direction(path)) - exact)
-        return float(np.sqrt(np.mean(np.square(errors))))
+        return np.sqrt(np.mean(np.square(errors), axis=0))
 
     def after_reversal(self, reach):
         """Rows within ``reach`` [m] of their last reversal (none before the first)."""

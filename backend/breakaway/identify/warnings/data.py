@@ -1,5 +1,5 @@
-"""Warnings about the recording itself, before any effect is tried (MODEL.md §8):
-``quantised``, ``force-is-command``, ``one-direction`` and ``single-rate``."""
+"""Warnings about the recording itself: ``quantised``, ``force-is-command``,
+``one-direction`` and ``single-rate``."""
 
 from __future__ import annotations
 
@@ -12,19 +12,20 @@ from ..noise import NoiseFloor
 from . import warning
 
 
-def data_warnings(problem, noise: NoiseFloor) -> list[dict]:
-    """What the columns say about how the data were taken."""
-    return [*_quantised(problem, noise), *_command(problem, noise),
+def data_warnings(problem, noise: NoiseFloor, inputs: float = 0.0) -> list[dict]:
+    """What the columns say about how the data were taken; ``inputs`` is the share of
+    the prediction error [N] that x's resolution sets (the report's ``input_floor``)."""
+    return [*_quantised(problem, noise, inputs), *_command(problem, noise, inputs),
             *_one_direction(problem), *_single_rate(problem)]
 
 
-def _quantised(problem, noise: NoiseFloor) -> list[dict]:
+def _quantised(problem, noise: NoiseFloor, inputs: float) -> list[dict]:
     out = []
     unit, length = problem.data.unit("N"), problem.data.unit("m")
     q_x = getattr(problem, "quantum_x", 0.0)
     if q_x > 0:
-        part = (f"; through the model they add {noise.from_x:.3g} {unit} to the noise floor"
-                if noise.from_x > 0 else "")
+        part = (f"; through the model they set {inputs:.3g} {unit} of the prediction "
+                f"error (the input floor)" if inputs > 0 else "")
         out.append(warning("quantised", "x", (
             f"x takes steps of {q_x:.4g} {length}: direction changes of up to "
             f"{problem.hysteresis:.4g} {length} "
@@ -39,7 +40,7 @@ def _quantised(problem, noise: NoiseFloor) -> list[dict]:
     return out
 
 
-def _command(problem, noise: NoiseFloor) -> list[dict]:
+def _command(problem, noise: NoiseFloor, inputs: float) -> list[dict]:
     if not noise.command:
         return []
     unit, length = problem.data.unit("N"), problem.data.unit("m")
@@ -49,9 +50,9 @@ def _command(problem, noise: NoiseFloor) -> list[dict]:
     return [warning("force-is-command", "F", (
         f"the force column is a command, not a measurement (no noise above its resolution, "
         f"differences estimate {noise.smooth_F:.3g} {unit}): the measurement error sits in x "
-        f"({error}); the noise floor {noise.value:.4g} {unit} is the larger of the base "
-        f"model's residual differences and that error of x run through the model "
-        f"({noise.from_x:.3g} {unit})"))]
+        f"({error}), which sets {inputs:.3g} {unit} of the prediction error through the "
+        f"model (the input floor); the noise floor {noise.value:.4g} {unit} is the "
+        f"force's own resolution"))]
 
 
 def _one_direction(problem) -> list[dict]:

@@ -1,0 +1,57 @@
+"""The noise floor is the noise of the measured force alone; what the resolution of x
+sets is the input floor, reported beside it."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from breakaway.identify import identify
+from breakaway.identify.fitting import fit_model
+from breakaway.identify.noise import estimate, input_floor, is_command
+
+from . import cases
+
+
+@pytest.mark.parametrize("count", [2e-6, 2e-5])
+def test_an_encoders_steps_do_not_raise_the_noise_floor(count):
+    # issue 26: the floor read what x's steps add through the model (0.28 N beside a
+    # final RMSE of 0.02 N); it is the load cell's noise, whatever the encoder
+    data, truth = cases.encoder_record(seed=1, count=count, F_noise=0.05)
+    report = identify(data)
+    assert report["noise_floor"] == pytest.approx(0.05, rel=0.25)
+    assert 0.0 <= report["input_floor"] <= math.sqrt(
+        max(report["error_after"] ** 2 - report["noise_floor"] ** 2, 0.0)) + 1e-12
+    assert report["effects"] == []
+
+
+def test_a_coarser_encoder_sets_more_of_the_error():
+    fine, _ = cases.encoder_record(seed=2, count=2e-6)
+    coarse, _ = cases.encoder_record(seed=2, count=4e-5)
+    floors = []
+    for data in (fine, coarse):
+        fit = fit_model(data)
+        floors.append(input_floor(fit, estimate(fit.problem)))
+    assert floors[1] > 3 * floors[0]
+
+
+def _ramp_less_gravity(noise, seed=0, n=3000):
+    """A programmed torque ramp less a gravity model of the encoder's angle (the force
+    column of an open-loop test on a robot joint), with ``noise`` [N·m] of a sensor."""
+    rng = np.random.default_rng(seed)
+    t = np.arange(n) * 0.015
+    count = 2 * np.pi / 2**20
+    angle = np.round(np.maximum(t - 20.0, 0.0) ** 1.5 * 1e-3 / count) * count
+    F = 0.5 * t - 3.0 * np.cos(angle) + noise * rng.standard_normal(n)
+    return cases.dataset("timeseries", {"t": t, "x": angle, "F": F})
+
+
+def test_a_programmed_ramp_less_a_gravity_model_is_a_command():
+    data = _ramp_less_gravity(0.0)
+    fit = fit_model(data)
+    assert is_command(fit.problem, estimate(fit.problem), fit.residual())
+    measured = _ramp_less_gravity(0.02)
+    fit = fit_model(measured)
+    assert not is_command(fit.problem, estimate(fit.problem), fit.residual())
