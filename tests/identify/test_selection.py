@@ -1,5 +1,5 @@
-"""Selection under misspecification (issue 19): an effect with a clear signature of its
-own is accepted next to a larger unknown; a stand-in for the unknown is not."""
+"""Selection under misspecification (issues 19 and 26): an effect with a clear signature
+of its own is accepted next to a larger unknown; a stand-in for the unknown is not."""
 
 from __future__ import annotations
 
@@ -9,8 +9,7 @@ import pytest
 from breakaway.identify import diagnose, parse_csv, report
 from breakaway.identify.effects import EFFECTS
 from breakaway.identify.fitting import fit_model, fit_with_effect
-from breakaway.identify.gates import MIN_EXCESS_EXPLAINED, collinear_with, consistency, gate
-from breakaway.identify.stability import unstable
+from breakaway.identify.judgement import Judge
 from breakaway.identify.synthetic import NOISE, _dataset, make_dataset, with_force
 from breakaway.presliding import motion_direction, presliding_force_from_target
 from breakaway.steady import stribeck_magnitude
@@ -40,15 +39,15 @@ def _with_transient(seed, amplitude=5.0):
 
 
 @pytest.mark.parametrize("seed", [2, 3])
-def test_an_effect_next_to_a_larger_unknown_passes_on_its_consistent_gain(seed):
+def test_an_effect_next_to_a_larger_unknown_passes_on_its_heldout_gain(seed):
     data = _with_vibration(seed)
     base = fit_model(data)
     trial = fit_with_effect(data, base, "asymmetry")
     share = (base.rmse**2 - trial.rmse**2) / (base.rmse**2 - NOISE["timeseries"] ** 2)
-    assert share < MIN_EXCESS_EXPLAINED  # the old rule would have refused it
-    positive, t = consistency(base, trial)
-    assert positive >= 0.9 and t > 5
-    assert gate(base, trial, NOISE["timeseries"]) is None
+    assert share < 0.25  # a quarter of the residual above the floor: the old rule refused it
+    verdict = Judge(data, NOISE["timeseries"]).judge(base, trial)
+    assert verdict.reason is None
+    assert verdict.heldout < 0.95 * verdict.current_heldout
     result = report(diagnose(data))
     # a level effect is named (offset is nested in asymmetry), and the vibration is
     # left unexplained rather than passed off as a library effect
@@ -56,35 +55,40 @@ def test_an_effect_next_to_a_larger_unknown_passes_on_its_consistent_gain(seed):
     assert result["unexplained"] is True
 
 
-def test_a_stand_in_for_an_unknown_does_not_hold_in_both_halves():
+def test_a_stand_in_for_an_unknown_is_refused_and_a_true_effect_is_not():
     data = _with_transient(2)
     base = fit_model(data)
     curve = fit_with_effect(data, base, "viscous-power")
     assert curve.bic < base.bic - 10  # it would pass on the BIC alone
-    reason = unstable(data, curve, "viscous-power")
-    assert reason and "stand-in" in reason and "first half" in reason
-    # a true effect keeps its parameters in both halves
+    assert Judge(data, NOISE["timeseries"]).judge(base, curve).reason
+    # a true effect is accepted
     true_data, truth = make_dataset("timeseries", ("viscous-power",), seed=11, n=10_000)
-    true_fit = fit_model(true_data, ("viscous-power",), starts=[truth])
-    assert unstable(true_data, true_fit, "viscous-power") is None
+    true_base = fit_model(true_data)
+    true_fit = fit_with_effect(true_data, true_base, "viscous-power")
+    assert Judge(true_data, NOISE["timeseries"]).judge(true_base, true_fit).reason is None
 
 
-def test_inertia_on_a_single_frequency_sine_is_not_its_own():
-    # a sine of displacement: a = -w^2 x, which a stiffness would give as well
+def test_inertia_on_a_single_frequency_sine_is_named_and_its_twin_said():
+    # a sine of displacement: a = -w^2 x, which a stiffness would give as well. The
+    # physical candidate is credited first (the force here is an inertia's), and the
+    # report says that a dependence on x would predict the same
     t = np.arange(6000) / 1000.0
     x = 0.004 * np.sin(2 * np.pi * 1.3 * t)
     v = np.gradient(x, t)
     g = stribeck_magnitude(v, 10.0, 15.0, 0.005, 1.5)
     F = presliding_force_from_target(x, motion_direction(x) * g, 2000.0)
     F = F + 30.0 * np.gradient(v, t) + 0.05 * np.random.default_rng(0).standard_normal(t.size)
-    data = _dataset("timeseries", {"t": t, "x": x, "F": F})
-    base = fit_model(data)
-    trial = fit_with_effect(data, base, "inertia")
-    assert collinear_with(trial.problem, "inertia") == "x"
-    assert "moves in step with x" in gate(base, trial, 0.05)
-    # on strokes of many lengths and speeds inertia is its own
+    result = report(diagnose(_dataset("timeseries", {"t": t, "x": x, "F": F})))
+    assert result["effects"] == ["inertia"]
+    assert result["final"]["params"]["m_e"] == pytest.approx(30.0, rel=0.05)
+    twin = [w for w in result["warnings"]
+            if w["code"] == "indistinguishable" and w["parameter"] == "m_e"]
+    assert twin and "depends smoothly on x" in twin[0]["message"]
+    # on strokes of many lengths and speeds inertia is its own: no such warning
     strokes, _ = make_dataset("timeseries", ("inertia",), seed=11, n=10_000)
-    assert collinear_with(fit_model(strokes).problem, "inertia") is None
+    result = report(diagnose(strokes))
+    assert result["effects"] == ["inertia"]
+    assert not [w for w in result["warnings"] if w["code"] == "indistinguishable"]
 
 
 def test_a_lag_crowded_after_reversals_stands_in_for_the_presliding_shape():
@@ -100,12 +104,14 @@ def test_a_lag_crowded_after_reversals_stands_in_for_the_presliding_shape():
     assert EFFECTS["lag"].unresolved(true_fit.problem, true_fit.params) is None
 
 
-def _power_fit(n, se, bic, rmse):
+def _power_fit(n, se, bic, rmse, rows=400):
     from types import SimpleNamespace
 
     data = SimpleNamespace(unit=lambda linear: linear)
-    return SimpleNamespace(params={"n": n}, stderr={"n": se}, determined={"n": True},
-                           bic=bic, rmse=rmse, problem=SimpleNamespace(data=data))
+    why = {"n": None if se is not None else "at-bound"}
+    return SimpleNamespace(params={"n": n}, stderr={"n": se}, determined={"n": se is not None},
+                           bic=bic, rmse=rmse, n=rows, problem=SimpleNamespace(data=data),
+                           assessment=SimpleNamespace(why=why))
 
 
 def test_a_heldout_error_below_the_fits_own_does_not_speak_for_that_fit():
@@ -121,6 +127,21 @@ def test_a_heldout_error_below_the_fits_own_does_not_speak_for_that_fit():
     preferred, why = power_is_preferred(power, _power_fit(1.0, None, -436.0, 0.0055),
                                         0.0060, 0.0059)
     assert not preferred and "held-out error prefers viscous" in why
+
+
+def test_an_exponent_on_its_bound_is_judged_by_the_likelihood_ratio():
+    from breakaway.identify.indistinguishable import power_is_preferred
+
+    # n on the bound 0.2 has no standard error; 400 rows whose RMSE falls by 20 % put
+    # n = 1 13 standard errors away by the likelihood ratio
+    power = _power_fit(0.2, None, bic=-500.0, rmse=0.008)
+    viscous = _power_fit(1.0, None, bic=-420.0, rmse=0.010)
+    preferred, why = power_is_preferred(power, viscous, 0.0081, 0.0102)
+    assert preferred and "likelihood ratio" in why
+    # a curve on its bound that the straight line fits within 3 standard errors is viscous
+    close = _power_fit(1.0, None, bic=-499.0, rmse=0.00801)
+    preferred, why = power_is_preferred(power, close, 0.0081, 0.0082)
+    assert not preferred and "within 3 standard errors" in why
 
 
 def test_a_quadratic_joint_curve_is_not_a_viscous_fit_with_fc_on_its_bound():

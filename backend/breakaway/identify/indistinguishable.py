@@ -1,33 +1,49 @@
-"""Effects that predict the same data (MODEL.md §7–§8 ``indistinguishable``): the
-report names one and gives the other's parameters."""
+"""Effects that predict the same data (the warning ``indistinguishable``): the report
+names one and gives the other's parameters."""
 
 from __future__ import annotations
 
 import math
 
 from .effects import EFFECTS, viscous_equivalent_of_detection
-from .gates import MIN_BIC_DROP
+from .judgement import MIN_BIC_DROP
 from .warnings import warning
 
 
 def close_rivals(effect, trial, others, trials) -> list[dict]:
     """``indistinguishable`` for each other passing candidate that explains the data
-    almost as well as the accepted ``effect`` (its BIC within MIN_BIC_DROP)."""
+    as well as the accepted ``effect`` (their BICs within MIN_BIC_DROP)."""
     out = []
     for other in others:
         gap = trials[other].bic - trial.bic
-        if gap > MIN_BIC_DROP:
+        if abs(gap) > MIN_BIC_DROP:
             continue
         values = ", ".join(f"{k} = {trials[other].params[k]:.4g}" for k in EFFECTS[other].keys)
+        if gap >= 0:
+            why = (f"its BIC is only {gap:.1f} higher; {MIN_BIC_DROP:g} would decide): "
+                   f"{effect} is named for the lower BIC")
+        else:
+            why = (f"its BIC is {-gap:.1f} lower, within the {MIN_BIC_DROP:g} that would "
+                   f"decide): {effect} is named for its fewer parameters")
         out.append(warning("indistinguishable", other, (
-            f"{other} explains these data almost as well as {effect} (its BIC is only "
-            f"{gap:.1f} higher; {MIN_BIC_DROP:g} would decide): {effect} is named for "
-            f"the lower BIC, the other reading is {other} with {values}")))
+            f"{other} explains these data as well as {effect} ({why}, the other reading "
+            f"is {other} with {values}")))
     return out
 
 
+def like_a_dependence(effect, fit, key, variables) -> dict:
+    """``indistinguishable``: ``effect`` was accepted although a smooth dependence on
+    ``variables`` (which the library lacks) would predict its ``key`` as well on these
+    data (inertia on one sine, where a = −ω²·x): the physical effect is named, and the
+    report says that the data do not tell them apart."""
+    return warning("indistinguishable", key, (
+        f"{effect} is named with {key} = {fit.params[key]:.4g}, but on these data a force "
+        f"that depends smoothly on {variables} would predict the same: a record with "
+        f"other motions (other speeds, amplitudes or frequencies) would tell them apart"))
+
+
 def viscous_or_detection(passing, trials, has_s: bool):
-    """MODEL.md §7: on break-away data viscous and detection raise F_ba alike where F̂
+    """On break-away data viscous and detection raise F_ba alike where F̂
     does not vary. When both pass within MIN_BIC_DROP, returns (named, other, warning):
     viscous when the file gives ``# s:``, detection when it does not; else None."""
     if not {"viscous", "detection"} <= set(passing):
@@ -54,7 +70,7 @@ def viscous_or_detection(passing, trials, has_s: bool):
     return named, other, warning("indistinguishable", other, text)
 
 
-#: ``viscous`` is ``viscous-power`` at n = 1 (MODEL.md §7): never in one model.
+#: ``viscous`` is ``viscous-power`` at n = 1: never in one model.
 EXCLUSIVE = {"viscous": "viscous-power", "viscous-power": "viscous"}
 #: ``viscous-power`` is named only when n is this many standard errors from 1.
 POWER_SIGMAS = 3.0
@@ -62,19 +78,35 @@ POWER_SIGMAS = 3.0
 
 def power_is_preferred(power, viscous, heldout_power: float,
                        heldout_viscous: float) -> tuple[bool, str]:
-    """MODEL.md §7's rule between ``viscous-power`` and ``viscous`` (fits of each, with
-    their held-out errors): the curve is named only when n differs from 1 by more than
+    """The rule between ``viscous-power`` and ``viscous`` (fits of each, with their
+    held-out errors): the curve is named only when n differs from 1 by more than
     :data:`POWER_SIGMAS` standard errors and both the BIC and the held-out error prefer
-    it. Returns the verdict and the sentence that explains it."""
+    it. Returns the verdict and the sentence that explains it.
+
+    An n on a bound of its range has no standard error; the distance from 1 is then the
+    likelihood ratio's: the root of ``N·ln(RSS_viscous/RSS_power)``, which is n's
+    distance from 1 in standard errors where both are defined. A curve bent beyond the
+    range's end (a rise steeper at low speed than |v|^0.2 makes) is still not straight.
+    An n tied to σ is not determined, and the straight form is named."""
     n, se = power.params["n"], power.stderr.get("n")
-    if se is None or not power.determined.get("n", False):
-        return False, f"its exponent n = {n:.3g} is not determined by these data"
-    distance = abs(n - 1.0) / se
-    if distance <= POWER_SIGMAS:
-        return False, (f"its exponent n = {n:.3g} ± {se:.2g} is within {POWER_SIGMAS:g} "
-                       f"standard errors of 1, where it is viscous")
+    at_bound = power.assessment.why.get("n") == "at-bound"
+    if at_bound and viscous is not None:
+        ratio = math.log(max(viscous.rmse, 1e-300) / max(power.rmse, 1e-300))
+        distance = math.sqrt(max(0.0, 2.0 * power.n * ratio))
+        if distance <= POWER_SIGMAS:
+            return False, (f"its exponent n = {n:.3g} sits on a bound of its range, and the "
+                           f"straight line fits within {POWER_SIGMAS:g} standard errors of it")
+        spread = "(on the bound of its range; its distance from 1 by the likelihood ratio)"
+    else:
+        if se is None or not power.determined.get("n", False):
+            return False, f"its exponent n = {n:.3g} is not determined by these data"
+        distance = abs(n - 1.0) / se
+        if distance <= POWER_SIGMAS:
+            return False, (f"its exponent n = {n:.3g} ± {se:.2g} is within {POWER_SIGMAS:g} "
+                           f"standard errors of 1, where it is viscous")
+        spread = f"± {se:.2g}"
     if viscous is not None and not power.bic < viscous.bic:
-        return False, (f"n = {n:.3g} ± {se:.2g}, but the BIC prefers viscous "
+        return False, (f"n = {n:.3g} {spread}, but the BIC prefers viscous "
                        f"({viscous.bic:.1f} against {power.bic:.1f})")
     # the named model is the fit to the whole record: its error on new data is not below
     # its error on the record. A held-out error under it came from refits that found a
@@ -84,12 +116,12 @@ def power_is_preferred(power, viscous, heldout_power: float,
     if viscous is not None:
         heldout_viscous = max(heldout_viscous, viscous.rmse)
     if not heldout_power < heldout_viscous:
-        return False, (f"n = {n:.3g} ± {se:.2g}, but the held-out error prefers viscous "
+        return False, (f"n = {n:.3g} {spread}, but the held-out error prefers viscous "
                        f"({heldout_viscous:.4g} against {heldout_power:.4g} "
                        f"{power.problem.data.unit('N')})")
-    return True, (f"n = {n:.3g} ± {se:.2g} differs from 1 by {distance:.0f} standard "
+    return True, (f"n = {n:.3g} {spread} differs from 1 by {distance:.0f} standard "
                   f"errors, and the BIC and the held-out error prefer the curve")
 
 
-__all__ = ["EXCLUSIVE", "POWER_SIGMAS", "close_rivals", "power_is_preferred",
+__all__ = ["EXCLUSIVE", "POWER_SIGMAS", "close_rivals", "like_a_dependence", "power_is_preferred",
            "viscous_or_detection"]

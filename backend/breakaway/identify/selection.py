@@ -1,8 +1,14 @@
-"""The search for the effects the data hold (MODEL.md §7): forward selection through
-:func:`.gates.gate`, the held-out error and the halves of a record (:mod:`.stability`), pairs when no single effect passes (two
-missing effects can each hide the other's gain), then a backward pass (drop an effect
-the others made redundant) and a swap pass (trade an accepted effect for a close rival
-that explains the data better)."""
+"""The search for the effects the data hold: forward selection judged by
+:mod:`.judgement` (the BIC, the held-out error block by block, an allowance for what the
+library lacks) and the halves of a record (:mod:`.stability`), pairs when no single
+effect passes (two missing effects can each hide the other's gain), then a backward
+pass (drop an effect the others made redundant) and a swap pass (trade an accepted
+effect for a close rival that explains the data better).
+
+Between candidates that explain the data equally well (their BICs within
+:data:`~.judgement.MIN_BIC_DROP`) the one with fewer parameters is named: an offset is
+nested in an asymmetry up to the virgin branch, and a direction difference that one
+constant describes needs no second level."""
 
 from __future__ import annotations
 
@@ -10,15 +16,15 @@ from dataclasses import dataclass
 
 from .csvdata import Dataset
 from .effects import EFFECTS
-from .fitting import FitResult, best_base_starts, fit_model, fit_with_effect, refit
-from .gates import MIN_BIC_DROP, gate
-from .heldout import heldout_error, heldout_rows
+from .fitting import FitResult, best_base_starts, family, fit_model, fit_with_effect, refit
 from .indistinguishable import (
     EXCLUSIVE,
     close_rivals,
+    like_a_dependence,
     power_is_preferred,
     viscous_or_detection,
 )
+from .judgement import MIN_BIC_DROP, Judge
 from .residuals import is_white
 from .stability import unstable
 
@@ -50,27 +56,25 @@ class Candidate:
 class Selection:
     """The state of one search: the data, the gates' verdicts, the steps taken."""
 
-    def __init__(self, data: Dataset, noise: float, report):
+    def __init__(self, data: Dataset, noise: float, report, weights=None):
         self.data = data
         self.noise = noise
         self.report = report
-        self.train, self.test = heldout_rows(data)
+        self.judgement = Judge(data, noise, weights)
         self.restarts = best_base_starts(data)
         self.verdicts: dict[str, Candidate] = {}
         self.warnings: list[dict] = []
         self.steps: list[Step] = []
-        self.settled: set[str] = set()  # named away by MODEL.md §7's rule
+        self.settled: set[str] = set()  # named away by the rule for indistinguishable pairs
         #: effects that came within MIN_BIC_DROP of an accepted one in its round
         self.rivals: set[str] = set()
         self.heldout_base = None
-        self._heldout: dict[int, tuple[FitResult, float]] = {}
+        #: per candidate, the dependence that would predict it as well (its verdict's twin)
+        self.twins: dict[str, tuple | None] = {}
 
     def heldout(self, fit: FitResult) -> float:
-        """The held-out error of ``fit``'s model (computed once per fit; the fit is kept
-        with its value, so its id is not reused)."""
-        if id(fit) not in self._heldout:
-            self._heldout[id(fit)] = (fit, heldout_error(self.data, fit, self.train, self.test))
-        return self._heldout[id(fit)][1]
+        """The held-out error of ``fit``'s model [N] (:mod:`.heldout`)."""
+        return self.judgement.heldout(fit).rmse
 
     def white(self, fit: FitResult) -> bool:
         return is_white(fit.residual(), fit.problem, self.noise)
@@ -89,8 +93,10 @@ class Selection:
     def forward(self, base: FitResult, available: list[str]) -> tuple[FitResult, float]:
         """Add effects one round at a time while the residual is not white."""
         current, current_heldout = base, self.heldout(base)
-        self.heldout_base = current_heldout
-        remaining = list(available)
+        if self.heldout_base is None:
+            self.heldout_base = current_heldout
+        remaining = [e for e in available if e not in base.effects
+                     and e not in self.settled and EXCLUSIVE.get(e) not in base.effects]
         total = max(len(remaining), 1)
         while remaining and not self.white(current):
             trials = {}
@@ -124,7 +130,7 @@ class Selection:
         return current, current_heldout
 
     def _exclude_partner(self, effect, remaining):
-        """``viscous`` and ``viscous-power`` are never in one model (MODEL.md §7)."""
+        """``viscous`` and ``viscous-power`` are never in one model."""
         partner = EXCLUSIVE.get(effect)
         if partner in remaining:
             remaining.remove(partner)
@@ -141,50 +147,56 @@ class Selection:
     def _choose(self, current, current_heldout, trials):
         passing = []
         for effect, trial in trials.items():
-            reason = gate(current, trial, self.noise)
-            if reason is None:
+            verdict = self.judgement.judge(current, trial, heldout=False)
+            if verdict.reason is None:
                 trials[effect] = trial = refit(self.data, trial)  # the full polish
-                reason = EFFECTS[effect].unresolved(trial.problem, trial.params)
-            self.verdicts[effect] = Candidate(trial.rmse, trial.bic, None, False, reason)
+                verdict = self.judgement.judge(current, trial)
+            reason = verdict.reason or EFFECTS[effect].unresolved(trial.problem, trial.params)
+            held = self.heldout(trial) if verdict.heldout is not None else None
+            self.verdicts[effect] = Candidate(trial.rmse, trial.bic, held, False, reason)
+            self.twins[effect] = verdict.twin
             if reason is None:
                 passing.append(effect)
         passing = self._settle_indistinguishable(passing, trials)
         passing = self._settle_power(passing, trials, current_heldout)
-        for effect in sorted(passing, key=lambda e: trials[e].bic):
+        for effect in by_parsimony(passing, trials):
             trial = trials[effect]
-            heldout = self.heldout(trial)
-            self.verdicts[effect].heldout = heldout
-            if heldout < current_heldout:
-                shaky = unstable(self.data, trial, effect)
-                if shaky:
-                    self.verdicts[effect].reason = shaky
-                    continue
-                self.rivals |= {e for e, t in trials.items()
-                                if e != effect and t.bic <= trial.bic + MIN_BIC_DROP}
-                # rivals: the other passing candidates not turned away on the way here
-                rivals = [e for e in passing if e != effect and self.verdicts[e].reason is None
-                          and trials[e].bic >= trial.bic]
-                self.warnings += close_rivals(effect, trial, rivals, trials)
-                return [(effect, trial, heldout, self._evidence(effect, current, trial))]
-            self.verdicts[effect].reason = (f"the held-out error rises from "
-                                            f"{current_heldout:.4g} to {heldout:.4g} "
-                                            f"{self.data.unit('N')}")
+            shaky = unstable(self.data, trial, effect)
+            if shaky:
+                self.verdicts[effect].reason = shaky
+                continue
+            self.rivals |= {e for e, t in trials.items()
+                            if e != effect and t.bic <= trial.bic + MIN_BIC_DROP}
+            # rivals: the other passing candidates not turned away on the way here
+            rivals = [e for e in passing if e != effect and self.verdicts[e].reason is None]
+            self.warnings += close_rivals(effect, trial, rivals, trials)
+            if self.twins.get(effect):
+                self.warnings.append(like_a_dependence(effect, trial, *self.twins[effect]))
+            return [(effect, trial, self.heldout(trial), self._evidence(effect, current, trial))]
         return None
 
     def _settle_indistinguishable(self, passing, trials):
-        settled = viscous_or_detection(passing, trials, "s" in self.data.meta)
+        # the pair predicts the same data: where one of them passes, the other's fit is
+        # as good, whatever its own verdict (a σ that the drop's flat direction leaves
+        # loose is still the other reading)
+        pair = ("viscous", "detection")
+        candidates = list(passing) + [e for e in pair if e in trials and e not in passing
+                                      and any(q in passing for q in pair)]
+        settled = viscous_or_detection(candidates, trials, "s" in self.data.meta)
         if settled is None:
             return passing
         named, other, entry = settled
+        if named not in passing:
+            return passing  # the rule's choice did not pass on its own
         self.warnings.append(entry)
         self.settled.add(other)
         self.verdicts[other].reason = (f"indistinguishable from {named} on these data; "
-                                       f"named {named} by the rule of MODEL.md §7")
+                                       f"named {named} by the rule for the two")
         return [e for e in passing if e != other]
 
     def _settle_power(self, passing, trials, current_heldout):
-        """MODEL.md §7: ``viscous-power`` is named only when its n is clearly not 1 and
-        the BIC and the held-out error prefer it; otherwise ``viscous``."""
+        """``viscous-power`` is named only when its n is clearly not 1 and the BIC and
+        the held-out error prefer it; otherwise ``viscous``."""
         if "viscous-power" not in passing:
             return passing
         power, viscous = trials["viscous-power"], trials.get("viscous")
@@ -200,17 +212,17 @@ class Selection:
             if "viscous" in self.verdicts:
                 self.verdicts["viscous"].reason = f"viscous-power describes the data better: {why}"
             return [e for e in passing if e != "viscous"]
-        self.verdicts["viscous-power"].reason = f"named viscous by the rule of MODEL.md §7: {why}"
+        self.verdicts["viscous-power"].reason = f"named viscous, its straight form: {why}"
         return [e for e in passing if e != "viscous-power"]
 
     def _choose_pair(self, current, current_heldout, trials):
-        """Two effects that pass the gates together when neither does alone."""
+        """Two effects that pass together when neither does alone."""
         promising = sorted((e for e in trials if trials[e].bic < current.bic),
                            key=lambda e: trials[e].bic)[:PAIR_CANDIDATES]
         best = None
         for i, first in enumerate(promising):
             for second in promising[i + 1:]:
-                if EXCLUSIVE.get(first) == second:  # never in one model (MODEL.md §7)
+                if EXCLUSIVE.get(first) == second:  # never in one model
                     continue
                 self.report(0.9, f"trying {first} with {second}")
                 try:
@@ -218,32 +230,34 @@ class Selection:
                                            restarts=self.restarts)
                 except (ValueError, FloatingPointError):
                     continue
-                if gate(current, pair, self.noise, added=2) is None and not any(
+                if (best is None or pair.bic < best[2].bic) and not any(
                         EFFECTS[e].unresolved(pair.problem, pair.params) for e in (first, second)) \
-                        and (best is None or pair.bic < best[2].bic):
+                        and self.judgement.judge(current, pair).reason is None:
                     best = (first, second, pair)
         if best is None:
             return None
         first, second, pair = best
-        heldout = self.heldout(pair)
-        if heldout >= current_heldout or any(unstable(self.data, pair, e) for e in (first, second)):
+        if any(unstable(self.data, pair, e) for e in (first, second)):
             return None
         first_fit = trials[first]
         note = f"; accepted together with {second}, which it masked"
         return [(first, first_fit, self.heldout(first_fit),
                  self._evidence(first, current, first_fit, note)),
-                (second, pair, heldout, self._evidence(second, first_fit, pair))]
+                (second, pair, self.heldout(pair), self._evidence(second, first_fit, pair))]
 
-    def backward(self, current, current_heldout):
-        """Drop accepted effects that the others made redundant (parsimony)."""
+    def backward(self, current, current_heldout, keep_one=True):
+        """Drop accepted effects that the others made redundant (parsimony); with
+        ``keep_one=False`` also the last (an effect accepted beside a part of the model
+        that was then taken out)."""
         changed = True
-        while changed and len(current.effects) > 1:
+        while changed and len(current.effects) > (1 if keep_one else 0):
             changed = False
             for effect in current.effects:
                 others = tuple(e for e in current.effects if e != effect)
-                reduced = fit_model(self.data, others, starts=[current.params], screen=1)
+                reduced = fit_model(self.data, others, starts=[current.params], screen=1,
+                                    **family(current))
                 if reduced.bic <= current.bic + MIN_BIC_DROP / 2:
-                    kept = ", ".join(others)
+                    kept = ", ".join(others) or "the model without a Stribeck drop"
                     self.verdicts[effect] = Candidate(reduced.rmse, reduced.bic, None, False,
                                                       f"made redundant by {kept}")
                     current = reduced
@@ -264,15 +278,18 @@ class Selection:
                 if EXCLUSIVE.get(candidate) in others:
                     continue
                 try:
-                    reduced = fit_model(self.data, others, starts=[current.params], screen=1)
+                    reduced = fit_model(self.data, others, starts=[current.params], screen=1,
+                                        **family(current))
                     trial = fit_with_effect(self.data, reduced, candidate, restarts=self.restarts)
                 except (ValueError, FloatingPointError):
                     continue
                 if trial.bic > current.bic - MIN_BIC_DROP or \
-                        EFFECTS[candidate].unresolved(trial.problem, trial.params):
+                        EFFECTS[candidate].unresolved(trial.problem, trial.params) or \
+                        self.judgement.judge(reduced, trial).reason:
                     continue
-                heldout = self.heldout(trial)
-                if heldout >= current_heldout or unstable(self.data, trial, candidate):
+                worse, _, held = self.judgement.compare(current, trial)
+                heldout = held.rmse
+                if worse or unstable(self.data, trial, candidate):
                     continue
                 if candidate == "viscous-power" and effect == "viscous" and not \
                         power_is_preferred(trial, current, heldout, current_heldout)[0]:
@@ -286,4 +303,17 @@ class Selection:
         return current, current_heldout
 
 
-__all__ = ["Candidate", "PAIR_CANDIDATES", "SCREEN_EVALUATIONS", "Selection", "Step"]
+def by_parsimony(passing, trials) -> list[str]:
+    """``passing`` in the order they are offered: the lowest BIC first, except that
+    among the candidates within :data:`~.judgement.MIN_BIC_DROP` of it the one with
+    fewer parameters comes first (they explain the data equally well)."""
+    ranked = sorted(passing, key=lambda e: trials[e].bic)
+    if not ranked:
+        return ranked
+    best = trials[ranked[0]].bic
+    close = [e for e in ranked if trials[e].bic <= best + MIN_BIC_DROP]
+    close.sort(key=lambda e: (len(EFFECTS[e].keys), trials[e].bic))
+    return close + [e for e in ranked if e not in close]
+
+
+__all__ = ["Candidate", "by_parsimony", "PAIR_CANDIDATES", "SCREEN_EVALUATIONS", "Selection", "Step"]

@@ -15,6 +15,9 @@ class Asymmetry(Effect):
     description = "separate Coulomb and Stribeck levels in the negative direction"
     regressor = {"timeseries": "v", "steady": "v", "breakaway": "direction"}
 
+    def switched_off(self, params):
+        return {**params, "Fc_neg": params["Fc"], "Fs_neg": params["Fs"]}
+
     def unavailable(self, pb):
         return _needs_both_directions(pb)
 

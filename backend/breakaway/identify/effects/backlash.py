@@ -68,9 +68,11 @@ def engaged_presliding(xc, d, target, s, F_r0, engaged):
 class Backlash(Effect):
     name = "backlash"
     kinds = ("timeseries",)
+    off = {"play": 0.0}
     params = (Param("play", "m", lambda sc: (0.0, sc.travel / 2), profiled=True),)
     description = "a play of width b between the measured point and the sliding body"
     regressor = {"timeseries": "x"}
+    acts_through = "x - x_r"
 
     def unavailable(self, pb):
         if pb.reversals < 2:

@@ -101,10 +101,28 @@ class Effect:
     description: str = ""
     #: x-axis of the residual plot that shows the effect, per kind
     regressor: dict[str, str] = {}
+    #: the variable the library otherwise lacks that the effect acts through (``t`` for a
+    #: drift, ``x`` for a ripple), or None: such an effect is not judged against an
+    #: allowance for a dependence on that variable, but must show its own form
+    #: (:meth:`unresolved`) instead (:mod:`breakaway.identify.allowance`)
+    acts_through: str | None = None
 
     @property
     def keys(self) -> tuple[str, ...]:
         return tuple(p.name for p in self.params)
+
+    @property
+    def size_keys(self) -> tuple[str, ...]:
+        """The parameters that set how large the effect is (not its shape): the ones
+        the data must determine for the effect to be shown."""
+        return tuple(self.off) or self.keys
+
+    #: the parameter values that switch the effect off (its size is zero)
+    off: dict = {}
+
+    def switched_off(self, params: dict) -> dict:
+        """``params`` with this effect switched off (:attr:`off`)."""
+        return {**params, **self.off}
 
     def unavailable(self, pb) -> str | None:
         """Why the data cannot show this effect (None: it can be tried)."""
@@ -165,6 +183,16 @@ def _needs_rates(pb) -> str | None:
         return (f"single-rate: {pb.distinct_rates} distinct rate(s); a rate effect needs "
                 f"at least {MIN_RATES}")
     return None
+
+
+def sliding_unseen(pb, params) -> str | None:
+    """Why a record cannot show an effect on the sliding curve (a viscous rise, a drift
+    or a lag of g): it never reaches gross sliding, so the curve is never shown. None
+    when it does (or the kind has no presliding)."""
+    if pb.kind != "timeseries" or pb.curve_speeds(params).size:
+        return None
+    return ("the record never reaches gross sliding: it never shows the sliding curve "
+            "this effect changes")
 
 
 def _direction_means(pb, r):

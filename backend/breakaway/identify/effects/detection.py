@@ -10,6 +10,7 @@ from .base import BREAKAWAY_Z, Effect, Param, _needs_rates, _project
 class Detection(Effect):
     name = "detection"
     kinds = ("breakaway",)
+    off = {"tau_det": 0.0}
     params = (Param("tau_det", "s", lambda sc: (0.0, 100 * sc.force / sc.rate)),)
     description = "the rig notices motion a time τ_det late while the force keeps ramping"
     regressor = {"breakaway": "k"}

@@ -11,6 +11,7 @@ from .base import Effect, Param
 class Dwell(Effect):
     name = "dwell"
     kinds = ("breakaway",)
+    off = {"zeta": 0.0}
     params = (Param("zeta", "", lambda sc: (0.0, 100.0)),
               Param("tau_d", "s", lambda sc: (1e-4 * max(sc.dwell, 1e-6), 1e3 * max(sc.dwell, 1e-6)),
                     log=True))

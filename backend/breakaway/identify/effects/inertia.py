@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import numpy as np
+
 from ...quasistatic import e12_acceleration
 from ..residuals import correlation
 from .base import BREAKAWAY_Z, Effect, Param, _needs_rates, _project
@@ -10,12 +12,22 @@ from .base import BREAKAWAY_Z, Effect, Param, _needs_rates, _project
 class Inertia(Effect):
     name = "inertia"
     kinds = ("timeseries", "breakaway")
+    off = {"m_e": 0.0}
     params = (Param("m_e", "kg", lambda sc: (0.0, 100 * sc.force / sc.accel)),)
     description = "an inertial force m_e·a in the measured force"
     regressor = {"timeseries": "a", "breakaway": "k"}
 
     def unavailable(self, pb):
         return _needs_rates(pb)
+
+    def unresolved(self, pb, params):
+        if pb.kind != "timeseries" or pb.derivatives.acceleration_resolved:
+            return None
+        noise = pb.derivatives.acceleration_noise
+        return (f"the record's accelerations are within what the resolution of x makes of "
+                f"them (RMS {float(np.sqrt(np.mean(pb.a**2))):.3g} against "
+                f"{noise:.3g} {pb.data.unit('m/s²')} from x's steps or noise alone): an "
+                f"inertial force cannot be told from how a is read")
 
     def _acceleration(self, pb, F_hat):
         if pb.kind == "breakaway":

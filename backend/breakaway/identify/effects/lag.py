@@ -8,7 +8,7 @@ import numpy as np
 from numba import njit
 
 from ..residuals import correlation
-from .base import Effect, Param
+from .base import Effect, Param, sliding_unseen
 
 
 @njit(cache=True)
@@ -31,11 +31,16 @@ MAX_PRESLIDING_CROWDING = 15.0
 class Lag(Effect):
     name = "lag"
     kinds = ("timeseries",)
+    off = {"tau": 0.0}
     params = (Param("tau", "s", lambda sc: (0.0, sc.duration / 4)),)
     description = "frictional lag: the Stribeck level follows a filtered velocity"
     regressor = {"timeseries": "v"}
+    acts_through = "time since reversal"
 
     def unresolved(self, pb, params):
+        unseen = sliding_unseen(pb, params)
+        if unseen:
+            return unseen  # the lag delays g, which a record that never slides never shows
         span = pb.derivatives.velocity_span
         if params["tau"] <= span:
             return (f"a lag of {params['tau']:.3g} s is no longer than the time v is taken over "

@@ -14,6 +14,7 @@ from .base import MIN_RIPPLE_PERIODS, Effect, Param, _fmt
 class Ripple(Effect):
     name = "ripple"
     kinds = ("timeseries",)
+    off = {"A": 0.0}
     params = (Param("A", "N", lambda sc: (0.0, 10 * sc.force)),
               # the travel must hold two wavelengths (MODEL.md §8 short-travel)
               Param("wavelength", "m",
@@ -21,6 +22,7 @@ class Ripple(Effect):
               Param("phase", "rad", lambda sc: (-4 * math.pi, 4 * math.pi), relative=False))
     description = "position-dependent friction A·sin(2πx/λ + φ)"
     regressor = {"timeseries": "x"}
+    acts_through = "x"
 
     def unavailable(self, pb):
         if pb.scales.travel < 8 * MIN_RIPPLE_PERIODS * pb.scales.step:

@@ -5,18 +5,22 @@ from __future__ import annotations
 import numpy as np
 
 from ..residuals import correlation
-from .base import Effect, Param, _needs_rates, _project
+from .base import Effect, Param, sliding_unseen, _needs_rates, _project
 
 
 class Viscous(Effect):
     name = "viscous"
     kinds = ("timeseries", "steady", "breakaway")
+    off = {"sigma": 0.0}
     params = (Param("sigma", "N·s/m", lambda sc: (0.0, 100 * sc.force / sc.speed)),)
     description = "viscous friction σ·v added to the steady state"
     regressor = {"timeseries": "v", "steady": "v", "breakaway": "k"}
 
     def unavailable(self, pb):
         return _needs_rates(pb)
+
+    def unresolved(self, pb, params):
+        return sliding_unseen(pb, params)
 
     def target(self, pb, p, v):
         return p["sigma"] * v

@@ -6,10 +6,12 @@ from __future__ import annotations
 import numpy as np
 
 from ..residuals import correlation
-from .base import Effect, Param, _project
+from .base import Effect, Param, sliding_unseen, _project
 
 #: The range of the exponent n (MODEL.md §7).
 EXPONENT_BOUNDS = (0.2, 3.0)
+#: A Coulomb level below this share of the force scale has been taken by the curve.
+LEVEL_TAKEN = 1e-6
 #: Exponents the fit starts from.
 START_EXPONENTS = (0.4, 1.0, 2.0)
 
@@ -29,10 +31,25 @@ def power_term(v, sigma, n):
 class ViscousPower(Effect):
     name = "viscous-power"
     kinds = ("timeseries", "steady")
+    off = {"sigma": 0.0}
     params = (Param("sigma", "N·(s/m)^n", _sigma_bounds),
               Param("n", "", lambda sc: EXPONENT_BOUNDS))
     description = "friction rising with speed along a curve, σ·sgn(v)·|v|ⁿ"
     regressor = {"timeseries": "v", "steady": "v"}
+
+    def unresolved(self, pb, params):
+        """A record that never slides does not show a rise with speed; and a concave
+        σ·|v|ⁿ that takes the whole Coulomb level (Fc driven to its bound 0, as a nearly
+        flat |v|^0.3 can) is the level, not a rise."""
+        unseen = sliding_unseen(pb, params)
+        if unseen:
+            return unseen
+        levels = [params[k] for k in ("Fc", "Fc_neg") if k in params]
+        if params["n"] < 1.0 and min(levels) <= LEVEL_TAKEN * pb.scales.force:
+            return (f"its σ·|v|^{params['n']:.2g} takes the Coulomb level (Fc = "
+                    f"{min(levels):.3g} {pb.data.unit('N')}): a curve that flat stands in "
+                    f"for the level, not for a rise with speed")
+        return None
 
     def target(self, pb, p, v):
         return power_term(v, p["sigma"], p["n"])

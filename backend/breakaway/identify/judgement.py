@@ -1,0 +1,231 @@
+"""Whether a candidate improves on the current model: the verdict of the search.
+
+An effect that is there acts wherever its cause does (a direction difference in every
+stroke, an inertia at every acceleration). So it is judged by how well it predicts
+rows it was not fitted to, block by block (:mod:`.heldout`):
+
+1. the BIC on all rows falls by at least :data:`MIN_BIC_DROP` per added effect (very
+   strong evidence, Kass & Raftery 1995) and the RMSE by :data:`MIN_RMSE_GAIN`; the
+   rows count as independent observations in units of the correlation time of what the
+   candidate leaves (a misfit that moves over many rows is one observation, not many);
+2. the effect's size is determined by the fit (at least one of its size parameters, by
+   the report's rule or through a combination with another parameter, and not
+   describing a part of the curve the data never show: an effect whose size the data
+   leave open, on a bound, along a flat direction or larger than itself, has not been
+   shown); a candidate whose force a
+   smooth dependence on such a variable would make as well is credited all the same
+   (physics first), and the report says which dependence would;
+3. the held-out error falls in total, and not in one lucky block: the gain summed over
+   the blocks stays positive without its best block (a stand-in that absorbs part of a
+   misfit outside the library helps where the two line up and hurts elsewhere);
+4. rows where the resolution of x makes the prediction uncertain (just after a reversal,
+   where (E6') is steep) count for less in both (:func:`.noise.input_weights`): a gain
+   there may be the reading of x, not friction;
+5. where the residual depends on a variable the model does not use, both sides carry
+   the same allowance for that dependence (:mod:`.allowance`), so that a large unknown
+   neither masks a real effect nor is credited to a candidate that imitates it; a
+   candidate that the allowance could replace is not its own.
+
+Nothing here compares a gain with the noise floor: the floor says how far the residual
+can fall, not whether a candidate may lower it.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from . import allowance
+from .effects import EFFECTS
+from .fitting import FitResult, smooth_order
+from .heldout import HeldOut, heldout_blocks, heldout_error
+from .identifiability import correlation_time
+from .warnings.beyond_data import beyond_data
+
+#: A BIC drop of 10 is "very strong" evidence (Kass & Raftery 1995).
+MIN_BIC_DROP = 10.0
+#: An accepted effect lowers the RMSE by at least this share.
+MIN_RMSE_GAIN = 0.03
+
+
+@dataclass
+class Verdict:
+    """A candidate's verdict: ``reason`` is None when it is accepted."""
+
+    reason: str | None
+    heldout: float | None = None  # the candidate's held-out RMSE [N]
+    current_heldout: float | None = None
+    allowance: tuple[str, ...] = ()
+    #: (parameter, variables) when a smooth dependence on those variables would
+    #: predict what the candidate's parameter does (a = −ω²·x on one sine)
+    twin: tuple[str, str] | None = None
+
+
+class Judge:
+    """The judgements of one search on one dataset (held-out errors computed once)."""
+
+    def __init__(self, data, noise: float, weights=None):
+        self.data = data
+        self.noise = noise  # the noise floor [N]
+        #: each row's weight (:func:`.noise.input_weights`), or None for all equal
+        self.weights = weights
+        self._blocks = None
+        self._heldout: dict = {}
+
+    def blocks(self, fit: FitResult):
+        if self._blocks is None:
+            self._blocks = heldout_blocks(fit.problem)
+        return self._blocks
+
+    def heldout(self, fit: FitResult) -> HeldOut:
+        """``fit``'s held-out errors (computed once per fit; the fit is kept with its
+        value, so its id is not reused)."""
+        if id(fit) not in self._heldout:
+            self._heldout[id(fit)] = (fit, heldout_error(fit, self.blocks(fit)))
+        return self._heldout[id(fit)][1]
+
+    def judge(self, current: FitResult, trial: FitResult, heldout: bool = True) -> Verdict:
+        """The verdict on ``trial`` (``current`` with one or two effects added); with
+        ``heldout=False`` only the parts that need no refit (a screening)."""
+        new = [e for e in trial.effects if e not in current.effects]
+        if not heldout:
+            # a screening fit is short of its optimum: it is polished when its plain BIC
+            # promises anything
+            drop = current.bic - trial.bic
+            return Verdict(None if drop >= MIN_BIC_DROP * len(new) else
+                           f"the BIC falls by {drop:.1f}, less than the "
+                           f"{MIN_BIC_DROP * len(new):g} required")
+        own = {EFFECTS[e].acts_through for e in new} - {None}
+        keys = [k for e in new for k in EFFECTS[e].keys]
+        # what the fit can tell apart from a dependence the library lacks: a physical
+        # candidate is credited first, and a twin is said, not refused
+        before = tuple(v for v in allowance.structured_variables(
+            current.problem, current.residual()) if allowance.variable_of(v) not in own)
+        twin_key = allowance.indistinguishable_from(
+            trial, keys, allowance.basis(trial.problem, before))
+        twin = (twin_key, listing(before)) if twin_key else None
+        beyond = beyond_data(trial, self.noise)
+        unshown = [e for e in new if not any(
+            _sized(trial, k) and k not in beyond
+            for k in EFFECTS[e].size_keys)]
+        if unshown:
+            keys = EFFECTS[unshown[0]].size_keys
+            return Verdict(f"the data do not determine its size ({', '.join(keys)}: "
+                           f"{_why(trial, keys, beyond)})")
+        # the allowance: the dependences the candidate leaves, fitted to what it leaves
+        # and taken off both sides alike (the candidate is credited first)
+        kept = tuple(v for v in allowance.structured_variables(
+            trial.problem, trial.residual()) if allowance.variable_of(v) not in own)
+        H = allowance.basis(trial.problem, kept)
+        n = trial.n
+        r0, r1 = _same_allowance(current.residual(), trial.residual(), H)
+        rss0, rss1 = self._weighted(r0), self._weighted(r1)
+        # rows whose residuals move together are not independent observations: the BIC
+        # counts what the candidate leaves in units of its correlation time
+        # (in a time series; steady and break-away rows are separate measurements)
+        n_eff = n
+        if trial.problem.kind == "timeseries":
+            order = smooth_order(trial.problem, np.arange(n))
+            n_eff = max(n / correlation_time(r1[order]), len(trial.problem.names) + 2.0)
+        drop = n_eff * math.log(max(rss0, 1e-300) / max(rss1, 1e-300)) \
+            - (len(trial.problem.names) - len(current.problem.names)) * math.log(n_eff)
+        beside = f" (beside an allowance for a dependence on {listing(kept)})" \
+            if kept else ""
+        if not drop >= MIN_BIC_DROP * len(new):
+            return Verdict(f"the BIC falls by {drop:.1f}{beside}, less than the "
+                           f"{MIN_BIC_DROP * len(new):g} required", allowance=kept)
+        # an effect worth naming changes the fit visibly: the plain RMSE, not one
+        # relative to what an allowance leaves
+        if trial.rmse > (1 - MIN_RMSE_GAIN) * current.rmse:
+            return Verdict(f"the RMSE falls by only {100 * (1 - trial.rmse / current.rmse):.2g} %"
+                           f", from {current.rmse:.4g} to {trial.rmse:.4g} "
+                           f"{self.data.unit('N')}", allowance=kept)
+        reason, h0, h1 = self.compare(current, trial, H)
+        return Verdict(reason and reason + beside, h1.rmse, h0.rmse, kept, twin)
+
+    def compare(self, current: FitResult, trial: FitResult, H=None):
+        """Why ``trial`` does not predict the held-out blocks better than ``current``
+        (None: it does, in total and not by one lucky block), with both held-out
+        errors; ``H`` an allowance fitted to what ``trial`` leaves of the held-out rows
+        and taken off both."""
+        h0, h1 = self.heldout(current), self.heldout(trial)
+        r0, r1 = _same_allowance(h0.residual, h1.residual, H)
+        before, after = self._block_sse(r0, h0.blocks), self._block_sse(r1, h1.blocks)
+        gain = before - after
+        unit = self.data.unit("N")
+        reason = None
+        if not float(np.sum(gain)) > 0:
+            total = self._total(r0.size)
+            weighted = " (rows weighted by how surely x's resolution lets them be predicted)" \
+                if self.weights is not None else ""
+            reason = (f"the held-out error{weighted} rises from "
+                      f"{math.sqrt(np.sum(before) / total):.4g} to "
+                      f"{math.sqrt(np.sum(after) / total):.4g} {unit}")
+        elif not float(np.sum(gain) - np.max(gain)) > 0:
+            better = int(np.count_nonzero(gain > 0))
+            reason = (f"its held-out gain comes from one block of the record: without it "
+                      f"the held-out error rises ({better} of {gain.size} blocks better)")
+
+        return reason, h0, h1
+
+    def _weighted(self, r) -> float:
+        """The squared error of residuals ``r``, rows weighted."""
+        return float(np.sum(r**2 if self.weights is None else self.weights * r**2))
+
+    def _block_sse(self, r, blocks) -> np.ndarray:
+        r2 = r**2 if self.weights is None else self.weights * r**2
+        return np.array([float(np.sum(r2[b])) for b in blocks])
+
+    def _total(self, n: int) -> float:
+        return float(np.sum(self.weights)) if self.weights is not None else float(n)
+
+
+def _same_allowance(r0, r1, H):
+    """Both residuals less one allowance: the smooth dependence ``H`` fitted to what
+    the candidate leaves (``r1``), so that it takes only what the candidate does not
+    explain and is the same on both sides."""
+    if H is None or H.shape[1] == 0:
+        return r0, r1
+    coef, *_ = np.linalg.lstsq(H, r1, rcond=None)
+    taken = H @ coef
+    return r0 - taken, r1 - taken
+
+
+def _sized(fit: FitResult, key: str) -> bool:
+    """Whether ``fit`` determines ``key`` as a size: by the report's rule, or tied only
+    through a correlation with another parameter (the data then determine a combination
+    of the two, and the effect's force is there: σ·v beside Fc on strokes of one speed)."""
+    if fit.determined.get(key):
+        return True
+    return (fit.assessment.why.get(key) or "").startswith("correlated:")
+
+
+#: How a parameter came out not determined, in words.
+_WHY = {"at-bound": "on a bound of its range", "flat": "along a flat direction of the fit",
+        "relative": "a standard error larger than its value",
+        "artefact": "a standard error too small to be real"}
+
+
+def _why(fit: FitResult, keys, beyond) -> str:
+    reasons = []
+    for key in keys:
+        if key in beyond and fit.determined.get(key):
+            reasons.append(f"{key} describes a part of the curve the data never show")
+            continue
+        why = fit.assessment.why.get(key) or ""
+        text = (f"tied to {why.split(':', 1)[1]}" if why.startswith("correlated:")
+                else _WHY.get(why, "not determined"))
+        reasons.append(f"{key} {text}")
+    return "; ".join(reasons)
+
+
+def listing(dependences) -> str:
+    """``x``, ``x and t``, ``x, t and time since reversal`` (each variable once, a
+    signed dependence named as its variable)."""
+    names = list(dict.fromkeys(allowance.variable_of(d) for d in dependences))
+    return names[0] if len(names) == 1 else ", ".join(names[:-1]) + " and " + names[-1]
+
+
+__all__ = ["Judge", "MIN_BIC_DROP", "MIN_RMSE_GAIN", "Verdict"]
