@@ -35,8 +35,12 @@ def test_the_loop_improves_fit_and_heldout_error(result):
     assert result["error_after"] < 0.85 * result["error_before"]
     assert result["heldout"]["after"] < result["heldout"]["before"]
     assert set(result["effects"]) <= set(EFFECTS)
-    # the 36 lb runs slide harder in the negative direction: a level effect is found
-    assert result["effects"] and set(result["effects"]) <= {"offset", "asymmetry"}
+    # the 36 lb runs slide harder in the negative direction: a level effect is found;
+    # beside it a force in phase with the measured acceleration (the ringing at sliding
+    # onset, the rig's own mass on its compliance) predicts 7 or more of 10 held-out
+    # blocks better, and may be named
+    assert set(result["effects"]) & {"offset", "asymmetry"}
+    assert set(result["effects"]) <= {"offset", "asymmetry", "inertia"}
 
 
 def test_structure_the_library_does_not_cover_is_admitted(result):

@@ -5,10 +5,14 @@
    Isolated spikes of the force are set aside and the base model fitted again
    (:mod:`.outliers`, with a warning); spikes that only the final model's residual
    shows (the base model's misfit hid them) send the data through once more.
-2. Search for the effects the data hold (:mod:`.selection`, through :mod:`.gates` and
-   the held-out error of :mod:`.heldout`); effects that predict the same data are
-   settled by MODEL.md §7's rule (:mod:`.indistinguishable`).
-3. ``residual_white``, ``unexplained``, ``residual_structure`` and the warnings, one
+2. Search for the effects the data hold (:mod:`.selection`, judged by
+   :mod:`.judgement`: the BIC, the held-out error on blocks of :mod:`.heldout`, an
+   allowance for what the library lacks from :mod:`.allowance`); effects that predict
+   the same data are settled by the rule of :mod:`.indistinguishable`.
+3. A Stribeck drop the data do not resolve is taken out (:mod:`.drop`): Fc comes from
+   the model without it.
+4. The share of the error that x's resolution sets (``input_floor``),
+   ``residual_white``, ``unexplained``, ``residual_structure`` and the warnings, one
    module per rule (:mod:`.warnings`).
 
 Long time series are screened on blocks (:mod:`.screening`); the base and final models
@@ -17,8 +21,9 @@ are then refitted on every row.
 
 from __future__ import annotations
 
+import math
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 from threadpoolctl import threadpool_limits
@@ -27,7 +32,9 @@ from .csvdata import Dataset
 from .effects import availability
 from .fitting import FitResult, fit_model, refit
 from .models import problem_for
-from .noise import NoiseFloor, command_floor, estimate, programmed_force
+from .drop import drop_bound_text, unresolved_drop, without_drop
+from .noise import (NoiseFloor, estimate, input_floor, input_weights, is_command,
+                    programmed_force)
 from .outliers import spike_rows
 from .preparation import SetAside, prepare, without_spikes
 from .residuals import is_white, residual_structure
@@ -57,6 +64,7 @@ class Diagnosis:
     steps: list[Step]
     heldout_before: float
     heldout_after: float
+    input_floor: float
     white: bool
     unexplained: bool
     candidates: dict[str, Candidate] = field(default_factory=dict)
@@ -113,12 +121,13 @@ def _diagnose(data: Dataset, progress, set_aside: SetAside | None = None,
             screen = screening_blocks(data, full_problem.d)
             screen_base, base = _evaluate(screen, screen_base), _evaluate(data, base)
         noise = estimate(full_problem)
-    noise = _with_position_noise(full_problem, noise, base)
-    warnings = list(prepared) + data_warnings(full_problem, noise) \
-        + stick_slip_warnings(full_problem)
+    noise = replace(noise, command=is_command(full_problem, noise, base.residual()))
     report(0.1, "screening candidate effects")
 
-    search = Selection(screen, noise.value, report)
+    # what x's resolution sets through the base model, row by row
+    errors = screen_base.problem.resolution_errors(screen_base.params) \
+        if data.kind == "timeseries" else None
+    search = Selection(screen, noise.value, report, input_weights(errors, noise))
     available = []
     for effect, why in availability(screen_base.problem).items():
         if why is None:
@@ -132,12 +141,34 @@ def _diagnose(data: Dataset, progress, set_aside: SetAside | None = None,
     if current.effects and not search.white(current):
         # a swap only pays where structure is left: with a white residual no rival can
         # lower the BIC by MIN_BIC_DROP
-        current, current_heldout = search.swap(current, current_heldout, available)
-    steps = [s for s in search.steps if s.effect in current.effects]
+        swapped, swapped_heldout = search.swap(current, current_heldout, available)
+        if swapped is not current:
+            # the effect a swap took out may still be there beside its replacement
+            current, current_heldout = search.forward(swapped, available)
+            if len(current.effects) > 1:
+                current, current_heldout = search.backward(current, current_heldout)
+    # the search keeps the drop, which a missing effect can distort into an unresolved
+    # one; the chosen model's drop is judged
+    dropless = unresolved_drop(current, noise.value)
+    if dropless:
+        # the model without it, with the effects it still needs, and the base model as
+        # reported in the same family, so that the errors before and after compare
+        current = without_drop(current)
+        current, current_heldout = search.backward(current, search.heldout(current),
+                                                   keep_one=False)
+        if not screen_base.problem.tied:
+            screen_base = without_drop(screen_base)
+            heldout_before = search.heldout(screen_base)
+            base = refit(data, screen_base, max_nfev=FULL_REFIT_EVALUATIONS) if screened \
+                else screen_base
+    # each accepted effect's last step (a swap can take an effect out and a later round
+    # put it back), in the model's order
+    last = {s.effect: s for s in search.steps}
+    steps = [last[e] for e in current.effects if e in last]
     if screened:
         report(0.92, "refitting the chosen model on every row")
         final = refit(data, current, max_nfev=FULL_REFIT_EVALUATIONS) \
-            if current.effects else base
+            if current.effects or dropless else base
         steps = [Step(s.effect, final if s.fit is current else _evaluate(data, s.fit),
                       s.evidence, s.heldout) for s in steps]
     else:
@@ -151,36 +182,28 @@ def _diagnose(data: Dataset, progress, set_aside: SetAside | None = None,
                              carried=prepared)
     for name in final.effects:
         search.verdicts[name] = Candidate(final.rmse, final.bic, current_heldout, True, None)
-    beyond = beyond_data(final, noise.value)
+    known = drop_bound_text(final, dropless) if dropless else {}
+    beyond = beyond_data(final, noise.value, known)
     for fit in {id(f): f for f in (base, final, *(s.fit for s in steps))}.values():
         mark_beyond(fit, beyond if fit is final else beyond_data(fit, noise.value))
-    white = is_white(final.residual(), final.problem, noise.value)
+    inputs = input_floor(final, noise)
+    # what the residual can fall to: the force's noise and what x's resolution sets
+    expected = math.hypot(noise.value, inputs)
+    white = is_white(final.residual(), final.problem, expected)
     structure = residual_structure(final.residual(), final.problem, white)
-    floor_low = [] if white else floor_low_warnings(final, noise.value, structure)
-    unexplained = (not white) and final.rmse > UNEXPLAINED_RATIO * noise.value \
+    floor_low = [] if white else floor_low_warnings(final, expected, structure)
+    unexplained = (not white) and final.rmse > UNEXPLAINED_RATIO * expected \
         and not floor_low
-    warnings += search.warnings + beyond_data_warnings(beyond) + fit_warnings(final) \
+    warnings = list(prepared) + data_warnings(full_problem, noise, inputs) \
+        + stick_slip_warnings(full_problem) + search.warnings \
+        + beyond_data_warnings(beyond) + fit_warnings(final) \
         + travel_warnings(final, structure) + floor_low
     if set_aside is not None:
         warnings.insert(len(prepared), set_aside.warning(data.kind, data.unit("N")))
     report(1.0, "done")
     return Diagnosis(data, noise, base, final, steps, heldout_before, current_heldout,
-                     white, unexplained, search.verdicts, warnings, structure,
+                     inputs, white, unexplained, search.verdicts, warnings, structure,
                      screen.n if screened else 0, time.perf_counter() - started)
-
-
-def _with_position_noise(problem, noise: NoiseFloor, base: FitResult) -> NoiseFloor:
-    """The floor with what the resolution of x adds through the model; for a commanded
-    force, the residual's own floor (the noise sits in x)."""
-    command = command_floor(problem, noise, base.residual())
-    from_x = base.problem.resolution_noise(base.params) if problem.kind == "timeseries" else 0.0
-    if command is not None:
-        # the residual is the noise of x seen through the model; its differences
-        # under-read it where the model smooths x (v over a window)
-        return command.at_least_position_part(from_x)
-    if problem.kind == "timeseries":
-        return noise.with_position_part(from_x)
-    return noise
 
 
 def _base_fits(data: Dataset, screened: bool, start: FitResult | None = None):

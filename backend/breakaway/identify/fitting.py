@@ -46,6 +46,15 @@ class FitResult:
         Rows fitted.
     prediction : numpy.ndarray
         Predicted F for every row of the dataset (fitted or not).
+    theta : numpy.ndarray
+        The solution in the fit's coordinates (:meth:`Problem.to_theta`).
+    jac : numpy.ndarray or None
+        Jacobian of the fitted rows' residuals with respect to ``theta`` at the
+        solution, shape (n, p); what a held-out refit starts from (:mod:`.heldout`).
+        None for records longer than :data:`KEEP_JACOBIAN_ROWS`, which are never
+        searched on every row (they are screened on blocks).
+    rows : numpy.ndarray
+        The rows fitted (indices).
     """
 
     effects: tuple[str, ...]
@@ -56,6 +65,9 @@ class FitResult:
     prediction: np.ndarray
     problem: Problem
     assessment: Assessment
+    theta: np.ndarray = None
+    jac: np.ndarray | None = None
+    rows: np.ndarray | None = None
 
     @property
     def stderr(self) -> dict:
@@ -150,7 +162,7 @@ def _solve(problem, theta0, rows, max_nfev):
 
 
 def fit_model(data: Dataset, effects=(), starts=None, rows=None, max_nfev=None,
-              screen=3, fixed=None) -> FitResult:
+              screen=3, fixed=None, ties=None) -> FitResult:
     """Fit the model with ``effects`` to ``data`` by bounded least squares.
 
     Parameters
@@ -171,12 +183,15 @@ def fit_model(data: Dataset, effects=(), starts=None, rows=None, max_nfev=None,
         The best ``screen`` starts (by their initial cost) are polished.
     fixed : dict, optional
         Parameters held at given values (their ``stderr`` is reported as 0).
+    ties : dict, optional
+        Coulomb levels held equal to their Stribeck level (``{"Fc": "Fs"}``): the model
+        without a Stribeck drop (:class:`~.models.Problem`).
 
     Returns
     -------
     FitResult
     """
-    problem = problem_for(data, tuple(effects), dict(fixed or {}))
+    problem = problem_for(data, tuple(effects), dict(fixed or {}), ties)
     rows = np.arange(data.n) if rows is None else np.asarray(rows)
     if rows.dtype == bool:
         rows = np.flatnonzero(rows)
@@ -213,8 +228,19 @@ def fit_model(data: Dataset, effects=(), starts=None, rows=None, max_nfev=None,
     assessment = assess(problem, best.x, best.jac, best.cost, n, best.active_mask,
                         best.fun, order)
     assessment = _levels_without_drop(problem, params, rows, assessment, order)
+    if not problem.level_only:
+        # a model without a drop: each Coulomb level is its Stribeck level's result
+        for low, level in problem.tied.items():
+            if level in problem.names:
+                for field in (assessment.stderr, assessment.determined, assessment.why):
+                    field[low] = field[level]
     return FitResult(problem.effects, params, math.sqrt(rss / n),
-                     bic(rss, n, len(problem.names)), n, prediction, problem, assessment)
+                     bic(rss, n, len(problem.names)), n, prediction, problem, assessment,
+                     best.x, best.jac if n <= KEEP_JACOBIAN_ROWS else None, rows)
+
+
+#: Fits of more rows than this do not keep their Jacobian (:attr:`FitResult.jac`).
+KEEP_JACOBIAN_ROWS = 200_000
 
 
 #: Each Stribeck level with its Coulomb level (MODEL.md §8: Fc when Fs = Fc).
@@ -251,10 +277,22 @@ def _levels_without_drop(problem: Problem, params: dict, rows, assessment: Asses
     return assessment
 
 
+def family(fit: FitResult) -> dict:
+    """The base parameters ``fit``'s model holds or ties (a model without a Stribeck
+    drop, a level-only break-away fit), as :func:`fit_model`'s ``fixed`` and ``ties``:
+    a model with other effects stays in the same family."""
+    problem = fit.problem
+    base = problem.base_names
+    return {"fixed": {k: v for k, v in problem.fixed.items() if k in base} or None,
+            "ties": problem.tied or None}
+
+
 def refit(data: Dataset, fit: FitResult, rows=None, max_nfev=None) -> FitResult:
-    """Fit the same model again from ``fit``'s parameters (e.g. on other rows)."""
+    """Fit the same model (its held and tied parameters too) again from ``fit``'s
+    parameters (e.g. on other rows)."""
+    problem = fit.problem
     return fit_model(data, fit.effects, starts=[fit.params], rows=rows, max_nfev=max_nfev,
-                     screen=1)
+                     screen=1, fixed=problem.fixed, ties=problem.tied or None)
 
 
 def best_base_starts(data: Dataset, count: int = 4) -> list[dict]:
@@ -274,51 +312,56 @@ def fit_with_effect(data: Dataset, current: FitResult, effect: str, rows=None,
     and the same effect values on each of ``restarts`` (base parameter sets, e.g.
     :func:`best_base_starts`), so a fit is not trapped in the current model's basin.
     """
-    problem = problem_for(data, current.effects + (effect,))
+    kin = family(current)
+    problem = problem_for(data, current.effects + (effect,), kin["fixed"], kin["ties"])
     extras = effect_starts(current.problem, effect, current.params, current.residual())
     starts = []
     for origin in (current.params, *restarts):
         starts.extend({**current.params, **origin, **extra} for extra in extras)
     profiled = [p.name for p in EFFECTS[effect].params if p.profiled]
     if profiled:
-        return _profiled_fit(data, problem.effects, profiled[0], starts, rows)
+        return _profiled_fit(data, problem.effects, profiled[0], starts, rows, kin)
     return fit_model(data, problem.effects, starts=starts, rows=rows, screen=screen,
-                     max_nfev=max_nfev)
+                     max_nfev=max_nfev, **kin)
 
 
 #: Values of a profiled parameter that get a fit (the best by their starts' cost).
 PROFILE_FITS = 3
 
 
-def _profiled_fit(data, effects, name, starts, rows):
-    """Fit with ``name`` held at each start's value (and 0), then free from the best."""
+def _profiled_fit(data, effects, name, starts, rows, kin):
+    """Fit with ``name`` held at each start's value (and 0), then free from the best
+    (within the model family ``kin``, :func:`family`)."""
     by_value = {}
     for start in starts:
         by_value.setdefault(start[name], []).append(start)
     zero = {**starts[0], name: 0.0}
     by_value.setdefault(0.0, [zero])
+    held = kin["fixed"] or {}
     # every value is scored at its starts first; only the most promising are fitted
     index = np.arange(data.n) if rows is None else np.asarray(rows)
     scored = sorted(by_value.items(), key=lambda item: min(
-        _cost(problem_for(data, effects, {name: item[0]}), {**s, name: item[0]}, index)
+        _cost(problem_for(data, effects, {**held, name: item[0]}, kin["ties"]),
+              {**s, name: item[0]}, index)
         for s in item[1]))
     best = None
-    n_free = len(problem_for(data, effects).names) - 1
+    n_free = len(problem_for(data, effects, held, kin["ties"]).names) - 1
     for value, group in scored[:PROFILE_FITS]:
-        fit = fit_model(data, effects, starts=group, rows=rows, screen=1, fixed={name: value},
+        fit = fit_model(data, effects, starts=group, rows=rows, screen=1,
+                        fixed={**held, name: value}, ties=kin["ties"],
                         max_nfev=8 * (n_free + 1))
         if best is None or fit.bic < best.bic:
             best = fit
-    free = fit_model(data, effects, starts=[best.params], rows=rows, screen=1)
-    return free if free.bic <= best.bic else _evaluated_at(data, effects, best.params, rows)
+    free = fit_model(data, effects, starts=[best.params], rows=rows, screen=1, **kin)
+    return free if free.bic <= best.bic else _evaluated_at(data, effects, best.params, rows, kin)
 
 
-def _evaluated_at(data, effects, params, rows):
+def _evaluated_at(data, effects, params, rows, kin):
     """The model with every parameter free, evaluated at ``params`` without moving them
     (least_squares stops after its first evaluation), so each parameter gets its
     standard error from the Jacobian there."""
-    return fit_model(data, effects, starts=[params], rows=rows, screen=1, max_nfev=1)
+    return fit_model(data, effects, starts=[params], rows=rows, screen=1, max_nfev=1, **kin)
 
 
 __all__ = ["FitError", "FitResult", "base_starts", "best_base_starts", "bic", "effect_starts",
-           "fit_model", "fit_with_effect", "refit"]
+           "family", "fit_model", "fit_with_effect", "refit"]

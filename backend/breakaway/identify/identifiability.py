@@ -35,6 +35,8 @@ FLAT_SINGULAR_VALUE = 1e-7
 ARTEFACT_RELATIVE_ERROR = 1e-9
 #: θ within this share of its range from a bound sits on it.
 BOUND_TOLERANCE = 1e-6
+#: ... where a range counts as at most this many times the value wide.
+WIDE_RANGE = 1e4
 
 
 @dataclass
@@ -51,6 +53,9 @@ class Assessment:
     determined: dict
     why: dict
     bound: dict  # name -> "lower" / "upper" for parameters on a bound
+    #: standard errors in the fit's coordinates where they differ from the parameter's
+    #: own: the gap Fs − Fc of a Stribeck level carried above its Coulomb level
+    gap_stderr: dict = None
 
 
 #: The residual's correlation time is summed until its autocorrelation falls below this.
@@ -124,10 +129,17 @@ def assess(problem, theta, jac, cost, n, active_mask=None, residual=None,
         if name not in names:
             stderr[name], determined[name], why[name] = None, False, "fixed"
     if p == 0:
-        return Assessment(stderr, determined, why, bound)
+        return Assessment(stderr, determined, why, bound, {})
 
     lo, hi = problem.bounds()
     span = np.where(np.isfinite(hi - lo), hi - lo, 1.0)
+    # a range many decades wider than the value (σ of σ·|v|ⁿ, whose bound must hold n = 3
+    # at slow speeds) would call a clear value "on its bound": such a range counts as
+    # wide as a few decades of the value (a level's gap above its base keeps its range)
+    plain = np.array([not problem.spec(name).log and not problem._gap_base(name)
+                      for name in names])
+    scale = np.maximum(np.abs(theta), np.abs(lo))
+    span = np.where(plain & (scale > 0), np.minimum(span, WIDE_RANGE * scale), span)
     at_lo = theta <= lo + BOUND_TOLERANCE * span
     at_hi = theta >= hi - BOUND_TOLERANCE * span
     if active_mask is not None:
@@ -168,6 +180,8 @@ def assess(problem, theta, jac, cost, n, active_mask=None, residual=None,
         gap = problem._gap_base(name)
         if gap:
             G[i, names.index(gap)] = 1.0
+    gap_stderr = {name: math.sqrt(cov[i, i]) for i, name in enumerate(names)
+                  if problem._gap_base(name) and np.isfinite(cov[i, i]) and cov[i, i] > 0}
     cov_p = G @ np.nan_to_num(cov) @ G.T
     var = np.diag(cov_p)
     with np.errstate(invalid="ignore", divide="ignore"):
@@ -195,7 +209,7 @@ def assess(problem, theta, jac, cost, n, active_mask=None, residual=None,
         stderr[name] = se
         determined[name] = reason is None
         why[name] = reason
-    return Assessment(stderr, determined, why, bound)
+    return Assessment(stderr, determined, why, bound, gap_stderr)
 
 
 __all__ = ["Assessment", "MAX_CORRELATION", "MAX_RELATIVE_ERROR", "assess", "block_covariance",

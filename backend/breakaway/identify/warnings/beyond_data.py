@@ -1,4 +1,4 @@
-"""``beyond-data`` (MODEL.md §8): a parameter that describes a part of the friction
+"""``beyond-data``: a parameter that describes a part of the friction
 curve the data never show is not determined, whatever its standard error says, and
 the warning gives the bound the data do set.
 
@@ -66,17 +66,19 @@ def _shape_unknown(fit: FitResult) -> str | None:
     return None
 
 
-def beyond_data(fit: FitResult, noise: float) -> dict[str, str]:
+def beyond_data(fit: FitResult, noise: float, known=None) -> dict[str, str]:
     """The parameters of ``fit`` the data cannot hold, each with the sentence that says
-    why and gives the bound the data set (first reason per parameter)."""
+    why and gives the bound the data set (first reason per parameter; ``known``
+    sentences, e.g. of a drop the data do not resolve, come first)."""
     pb, p = fit.problem, fit.params
     unit = pb.data.unit("N")
     speed_unit = pb.data.unit("m/s")
-    found: dict[str, str] = {}
+    known = known or {}
+    found: dict[str, str] = dict(known)
 
     def add(names, text):
         for name in names:
-            if name in p and name not in found and name not in pb.fixed:
+            if name in p and name not in found and (name not in pb.fixed or name in known):
                 found[name] = text
 
     speeds = pb.curve_speeds(p)
@@ -94,6 +96,17 @@ def beyond_data(fit: FitResult, noise: float) -> dict[str, str]:
 
     asymmetric = "Fs_neg" in p
     slowest, fastest = float(np.min(speeds)), float(np.max(speeds))
+    if "n" in p and p["n"] < 1.0:
+        # a concave σ·|v|ⁿ rises fastest below the slowest speed the data show: what it
+        # adds there is an extrapolation, and Fc (the level at v → 0) with it
+        below = p["sigma"] * slowest ** p["n"]
+        if below > ABOVE_NOISE * noise:
+            at_slowest = p["Fc"] + below
+            add(("Fc", "Fc_neg"), (
+                f"the curved viscous term σ·|v|^{p['n']:.2g} adds {below:.4g} {unit} between "
+                f"rest and the slowest speed at which the data show the curve "
+                f"({slowest:.3g} {speed_unit}), a part of the curve they never show: the "
+                f"friction there, {at_slowest:.4g} {unit}, is an upper bound on Fc"))
     shape = _shape_unknown(fit)
     for (low, level), way in zip(LEVELS, (0, 1)):
         if level not in p:

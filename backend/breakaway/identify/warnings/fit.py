@@ -1,5 +1,6 @@
-"""Warnings about what a fit determines (MODEL.md §8): ``at-bound`` and
-``undetermined``, one per parameter that is not a result."""
+"""Warnings about what a fit determines: ``at-bound`` and ``undetermined``, one per
+parameter that is not a result. A parameter ``beyond-data`` is not determined either:
+it gets an ``undetermined`` warning that points to the bound the data set."""
 
 from __future__ import annotations
 
@@ -18,9 +19,14 @@ def fit_warnings(fit: FitResult) -> list[dict]:
     out = []
     a = fit.assessment
     for name, reason in a.why.items():
-        if reason is None or reason in ("fixed", "beyond-data"):
+        if reason is None or reason == "fixed":
             continue
         value = fit.params[name]
+        if reason == "beyond-data":
+            out.append(warning("undetermined", name, (
+                f"{name} = {value:.4g} is not determined: it describes a part of the curve "
+                f"the data never show (its beyond-data warning gives the bound they set)")))
+            continue
         if reason == "at-bound":
             side = a.bound.get(name, "a")
             text = f"{name} = {value:.4g} ended on the {side} bound of its range"

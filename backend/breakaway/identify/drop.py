@@ -1,0 +1,138 @@
+"""Whether the data resolve a Stribeck drop; where they do not, the model without it.
+
+No drop, no Stribeck parameters. A drop of g (E2) from Fs to Fc is velocity weakening:
+friction that falls as the speed rises. A fit can place one where the data cannot show
+it: a few hundredths of a newton at a Stribeck velocity far beyond the fastest speed of
+the file, or a "drop" whose fall the viscous rise more than cancels at every measured
+speed, bending a rising curve into shape. Such a drop describes nothing the data hold,
+and it drags Fc with it (to 0, or to the top of a fall that is never seen). The drop is
+unresolved (:func:`unresolved_drop`) when
+
+- Fs − Fc is within :data:`GAP_SIGMAS` standard errors of 0;
+- V lies beyond the fastest speed at which the data show the curve;
+- δ sits on a bound of its range;
+- the steady curve with the effects that act on the body does not fall, anywhere over
+  the speeds the data show it at, by more than :data:`FALL_NOISE` noise floors.
+
+The model is then refitted without the drop (:func:`without_drop`): Fc tied to Fs, V
+and δ held. Fc is its result, with its standard error; Fs, V and δ are ``beyond-data``
+with the bound the data set.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..steady import stribeck_kernel
+from .effects import DELTA_BOUNDS
+from .fitting import FitResult, fit_model
+
+#: A drop within this many standard errors of Fs − Fc = 0 is not resolved.
+GAP_SIGMAS = 2.0
+#: The steady curve must fall by more than this many noise floors somewhere.
+FALL_NOISE = 2.0
+#: Speeds at which the steady curve is evaluated between the slowest and the fastest.
+CURVE_POINTS = 200
+#: Each direction's levels and the parameters of their drop.
+LEVELS = (("Fc", "Fs"), ("Fc_neg", "Fs_neg"))
+
+
+def steady_curve(problem, params: dict, speeds, negative: bool = False) -> np.ndarray:
+    """|F| of the steady curve [N] at ``speeds`` [m/s] in one direction: g (E2) with
+    the direction's levels plus what the accepted effects add to the body's steady
+    force (viscous, viscous-power)."""
+    speeds = np.asanyarray(speeds, dtype=float)
+    Fc, Fs = problem._levels(params, np.full(speeds.size, negative))
+    total = stribeck_kernel(speeds, Fc, Fs, params["V"], params["delta"])
+    for effect in problem.effect_objects:
+        total = total + effect.target(problem, params, speeds)
+    return total
+
+
+def largest_fall(problem, params: dict, slowest: float, fastest: float) -> float:
+    """The largest fall [N] of the steady curve with rising speed between ``slowest``
+    and ``fastest`` (either direction): 0 for a curve that never falls."""
+    speeds = np.geomspace(slowest, fastest, CURVE_POINTS) if slowest > 0 \
+        else np.linspace(0.0, fastest, CURVE_POINTS)
+    falls = []
+    for negative, (_, level) in zip((False, True), LEVELS):
+        if level not in params:
+            continue
+        curve = steady_curve(problem, params, speeds, negative)
+        falls.append(float(np.max(np.maximum.accumulate(curve) - curve)))
+    return max(falls, default=0.0)
+
+
+def unresolved_drop(fit: FitResult, noise: float) -> str | None:
+    """Why the data do not resolve ``fit``'s Stribeck drop (None: they do, or the
+    model has no drop to judge: tied levels, a level-only fit, a record that never
+    slides)."""
+    problem, p = fit.problem, fit.params
+    if problem.tied or "V" not in problem.names or "delta" not in problem.names:
+        return None
+    speeds = problem.curve_speeds(p)
+    if speeds.size == 0:
+        return None
+    a = fit.assessment
+    unit, speed_unit = problem.data.unit("N"), problem.data.unit("m/s")
+    gaps = []
+    for low, level in LEVELS:
+        if level in p:
+            gap, se = p[level] - p[low], (a.gap_stderr or {}).get(level)
+            gaps.append((level, low, gap, se))
+    if all(se is not None and gap <= GAP_SIGMAS * se for _, _, gap, se in gaps):
+        level, low, gap, se = gaps[0]
+        return (f"{level} − {low} = {gap:.3g} ± {se:.2g} {unit} is within "
+                f"{GAP_SIGMAS:g} standard errors of no drop")
+    fastest, slowest = float(np.max(speeds)), float(np.min(speeds))
+    if p["V"] > fastest:
+        return (f"its Stribeck velocity V = {p['V']:.3g} {speed_unit} lies beyond the "
+                f"fastest speed at which the data show the curve ({fastest:.3g} "
+                f"{speed_unit})")
+    if a.bound.get("delta") or p["delta"] <= DELTA_BOUNDS[0] or p["delta"] >= DELTA_BOUNDS[1]:
+        return f"its shape δ = {p['delta']:.3g} sits on a bound of its range"
+    if problem.kind != "breakaway":
+        fall = largest_fall(problem, p, slowest, fastest)
+        if not fall > FALL_NOISE * noise:
+            return (f"the steady curve never falls with speed over the speeds the data "
+                    f"show it at ({slowest:.3g} to {fastest:.3g} {speed_unit}; its largest "
+                    f"fall is {fall:.3g} {unit}, within {FALL_NOISE:g} noise floors): "
+                    f"the drop only bends the rise of the curve")
+    return None
+
+
+def without_drop(fit: FitResult, rows=None) -> FitResult:
+    """``fit``'s model refitted without its Stribeck drop: each Coulomb level tied to
+    its Stribeck level, V and δ held at their values. Fc takes the level's value,
+    standard error and verdict (:func:`.fitting.fit_model`)."""
+    problem, p = fit.problem, fit.params
+    ties = {low: level for low, level in LEVELS if level in p}
+    held = {**problem.fixed, "V": p["V"], "delta": p["delta"]}
+    start = dict(p)
+    for low, level in ties.items():
+        start[level] = start[low] = max(p[low], 0.5 * (p[low] + p[level]))
+    return fit_model(problem.data, fit.effects, starts=[start], rows=rows, screen=1,
+                     fixed=held, ties=ties)
+
+
+def drop_bound_text(fit: FitResult, reason: str) -> dict[str, str]:
+    """The ``beyond-data`` sentences of a model without its drop: Fs, V and δ of each
+    direction describe a drop the data do not hold; the level is a lower bound on Fs."""
+    p, unit = fit.params, fit.problem.data.unit("N")
+    out = {}
+    for low, level in LEVELS:
+        if level not in p:
+            continue
+        text = (f"the data do not resolve a Stribeck drop ({reason}); {low} = "
+                f"{p[low]:.4g} {unit} comes from the model without it, and the data set "
+                f"only {level} ≥ {p[low]:.4g} {unit} (the sliding level)")
+        out.setdefault(level, text)
+        out.setdefault("V", text)
+        out.setdefault("delta", text)
+    return out
+
+
+__all__ = ["FALL_NOISE", "GAP_SIGMAS", "drop_bound_text", "largest_fall", "steady_curve",
+           "unresolved_drop", "without_drop"]

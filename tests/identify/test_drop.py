@@ -1,0 +1,76 @@
+"""No drop, no Stribeck parameters: a drop the data do not resolve is taken out, and Fc
+is the sliding level with its standard error."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from breakaway.identify import identify
+from breakaway.identify.drop import largest_fall, steady_curve, unresolved_drop, without_drop
+from breakaway.identify.fitting import fit_model
+from breakaway.identify.synthetic import _dataset
+from breakaway.steady import stribeck_magnitude
+
+
+def _steady(Fc, Fs, V, delta, sigma=0.0, n=0.0, speeds=None, noise=0.04, seed=0):
+    """A steady curve at both directions' ``speeds`` [m/s] with noise [N]."""
+    rng = np.random.default_rng(seed)
+    speeds = np.geomspace(1e-3, 4e-2, 24) if speeds is None else speeds
+    v = np.concatenate([speeds, -speeds])
+    F = np.sign(v) * (stribeck_magnitude(v, Fc, Fs, V, delta) + sigma * np.abs(v) ** (n or 1))
+    return _dataset("steady", {"v": v, "F": F + noise * rng.standard_normal(v.size)})
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_a_tiny_drop_far_beyond_the_fastest_speed_leaves_fc_the_sliding_level(seed):
+    # 0.02 N of drop at V = 123 m/s in a file whose fastest speed is 0.04 m/s
+    data = _steady(6.13, 6.15, 123.0, 1.0, seed=seed)
+    report = identify(data)
+    final = report["final"]
+    assert final["determined"]["Fc"]
+    assert final["params"]["Fc"] == pytest.approx(6.15, abs=0.03)
+    assert final["stderr"]["Fc"] < 0.03
+    for name in ("Fs", "V", "delta"):
+        assert not final["determined"][name]
+        assert any(w["code"] == "beyond-data" and w["parameter"] == name
+                   for w in report["warnings"])
+
+
+def test_a_drop_fitted_beyond_the_fastest_speed_does_not_drag_fc():
+    # the level is 5.5 N everywhere the file goes (to 15 mm/s); a fit that places a
+    # drop at 27 mm/s reads Fc off a fall nobody saw
+    data = _steady(5.5, 5.5, 0.027, 2.0, speeds=np.geomspace(1e-3, 0.015, 20), seed=4)
+    fit = fit_model(data, starts=[{"Fc": 1.9, "Fs": 5.6, "V": 0.027, "delta": 3.0}])
+    assert unresolved_drop(fit, 0.04)
+    level = without_drop(fit)
+    assert level.params["Fc"] == pytest.approx(5.5, abs=0.03)
+    assert level.determined["Fc"]
+    assert level.params["Fs"] == level.params["Fc"]
+
+
+def test_a_resolved_drop_is_kept():
+    data = _steady(1.0, 1.5, 0.01, 1.5, speeds=np.geomspace(1e-3, 0.2, 30))
+    fit = fit_model(data)
+    assert unresolved_drop(fit, 0.04) is None
+    assert fit.params["Fs"] - fit.params["Fc"] == pytest.approx(0.5, abs=0.1)
+
+
+def test_a_drop_that_only_bends_a_rising_curve_is_no_drop():
+    # a concave viscous rise from 1.9 N: a fit may bend it with a "drop" of g at
+    # the fast end, under a rise that is steeper still
+    speeds = np.geomspace(1e-4, 2.8, 30)
+    data = _steady(1.9, 1.9, 1.0, 1.0, sigma=4.3, n=0.7, speeds=speeds, noise=0.02)
+    fit = fit_model(data, ("viscous",), starts=[{"Fc": 0.1, "Fs": 1.9, "V": 2.0,
+                                                 "delta": 3.8, "sigma": 4.0}])
+    assert largest_fall(fit.problem, fit.params, speeds[0], speeds[-1]) < 0.05
+    assert unresolved_drop(fit, 0.02)
+
+
+def test_the_steady_curve_adds_the_effects_on_the_body():
+    data = _steady(1.0, 1.0, 1.0, 1.0, sigma=2.0)
+    fit = fit_model(data, ("viscous",), starts=[{"Fc": 1.0, "Fs": 1.0, "V": 1.0,
+                                                 "delta": 1.0, "sigma": 2.0}], max_nfev=1)
+    speeds = np.array([0.0, 0.5, 1.0])
+    np.testing.assert_allclose(steady_curve(fit.problem, fit.params, speeds),
+                               fit.params["Fc"] + fit.params["sigma"] * speeds, rtol=1e-6)
