@@ -7,7 +7,8 @@ from pathlib import Path
 
 from pydantic_settings import BaseSettings, SettingsConfigDict
 
-_REPO_FRONTEND = Path(__file__).resolve().parents[2] / "frontend"
+_REPO = Path(__file__).resolve().parents[2]
+_REPO_FRONTEND = _REPO / "frontend"
 
 
 class Settings(BaseSettings):
@@ -18,6 +19,8 @@ class Settings(BaseSettings):
     host: str = "127.0.0.1"
     port: int = 8000
     frontend_dir: Path = _REPO_FRONTEND
+    #: The built documentation (``scripts/docs``), served under /guide/.
+    docs_dir: Path = _REPO / "docs" / "_build" / "html"
     #: Largest accepted upload for /api/fit [bytes] (MODEL.md §6: 20 MB).
     max_upload_bytes: int = 20 * 1024 * 1024
     #: Largest request body for the JSON endpoints [bytes].
