@@ -1,5 +1,5 @@
 """Command line: ``breakaway serve``, ``breakaway fit`` and ``breakaway export``
-(MODEL.md §9)."""
+(documented on the command-line page of the documentation)."""
 
 from __future__ import annotations
 
@@ -201,7 +201,8 @@ def build_parser() -> argparse.ArgumentParser:
     serve.set_defaults(handler=_serve)
     fit = commands.add_parser("fit", help="fit measured CSVs and report the effects found")
     fit.add_argument("files", nargs="+", metavar="FILE",
-                     help="CSV file(s) (MODEL.md §6); several give one summary row each")
+                     help="CSV file(s): timeseries t,x,F; steady v,F; breakaway k,F_ba; "
+                          "several give one summary row each")
     fit.add_argument("--jobs", type=int, default=1,
                      help="local worker processes for several files (default 1)")
     fit.add_argument("--dask", metavar="ADDRESS", default=None,
@@ -211,12 +212,12 @@ def build_parser() -> argparse.ArgumentParser:
                      help="write the summary table to PREFIX.csv and PREFIX.json")
     fit.add_argument("--kind", choices=("timeseries", "steady", "breakaway"), default=None,
                      help="data kind (default: from a '# kind:' line or the columns)")
-    fit.add_argument("--json", action="store_true", help="print the JSON report (MODEL.md §8)")
+    fit.add_argument("--json", action="store_true", help="print the JSON identification report")
     fit.set_defaults(handler=_fit)
     export = commands.add_parser(
         "export", help="the fitted model of a report as standalone Python, C99 or JSON")
     export.add_argument("report", metavar="REPORT.json",
-                        help="a report of breakaway fit FILE --json (MODEL.md §8)")
+                        help="a report of breakaway fit FILE --json")
     export.add_argument("--lang", choices=("python", "c", "json"), required=True,
                         help="python: steady(v), class Presliding with step(x, t); c: "
                              "bk_steady, bk_state, bk_init, bk_step; json: the parameters")

@@ -21,7 +21,7 @@ class Settings(BaseSettings):
     frontend_dir: Path = _REPO_FRONTEND
     #: The built documentation (``scripts/docs``), served under /guide/.
     docs_dir: Path = _REPO / "docs" / "_build" / "html"
-    #: Largest accepted upload for /api/fit [bytes] (MODEL.md §6: 20 MB).
+    #: Largest accepted upload for /api/fit [bytes] (20 MiB).
     max_upload_bytes: int = 20 * 1024 * 1024
     #: Largest request body for the JSON endpoints [bytes].
     max_json_bytes: int = 64 * 1024

@@ -1,4 +1,4 @@
-"""Pydantic models of the fit endpoints (MODEL.md §8, §9)."""
+"""Pydantic models of the fit endpoints."""
 
 from __future__ import annotations
 
@@ -46,7 +46,7 @@ class CandidateVerdict(BaseModel):
 
 
 class FitReport(BaseModel):
-    """The §8 identification report."""
+    """The identification report."""
 
     model_config = ConfigDict(extra="allow")
 

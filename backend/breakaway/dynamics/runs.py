@@ -155,7 +155,7 @@ def _run_grid(model_id, p, y0, mem0, t_end, atol, rtol, max_steps, n_grid, event
 
 @dataclass(frozen=True)
 class LoopRun:
-    """One run of the position loop (MODEL.md §5b) on its output grid plus events.
+    """One run of the position loop on its output grid plus events.
 
     Attributes
     ----------
