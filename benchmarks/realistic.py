@@ -13,12 +13,12 @@ it, each miss. The obvious alternative (the engine's own seeded sets from
 suite already passes; this is the gap between that and a machine.
 
 Run: .venv/bin/python benchmarks/realistic.py [--seeds 3] [--family NAME ...]
+The table goes to docs/benchmarks/results/realistic.md, which the documentation includes.
 """
 
 from __future__ import annotations
 
 import argparse
-import os
 import sys
 import time
 from pathlib import Path
@@ -26,6 +26,9 @@ from pathlib import Path
 # imported as pytest imports them (package ``identify`` under tests/), so that the
 # plant's numba cache, keyed by module name, serves both
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+from results import Results  # noqa: E402
 
 from breakaway.identify import identify, parse_csv  # noqa: E402
 from identify.expectations import failures  # noqa: E402
@@ -65,11 +68,8 @@ def main() -> None:
     chosen = families()
     if args.family:
         chosen = {name: chosen[name] for name in args.family}
-    print(f"load average before: {', '.join(f'{x:.2f}' for x in os.getloadavg())}")
-    print("| family | seed | expected | reported effects | key warnings | determined (truth) "
-          "| unexplained | s | misses |")
-    print("|---|---|---|---|---|---|---|---|---|")
-    misses, passed, total, started = [], 0, 0, time.perf_counter()
+    out = Results("realistic", __file__)
+    rows, misses, passed, total, started = [], [], 0, 0, time.perf_counter()
     for name, make in chosen.items():
         for seed in range(args.seeds):
             recording = make(seed)
@@ -80,18 +80,20 @@ def main() -> None:
             total += 1
             passed += not found
             misses += [(name, seed, f) for f in found]
-            print(f"| {name} | {seed} | {recording.expect.summary()} | "
-                  f"{', '.join(report['effects']) or 'none'} | {_warnings(report)} | "
-                  f"{_determined(report, recording.truth)} | "
-                  f"{'yes' if report['unexplained'] else 'no'} | {seconds:.1f} | "
-                  f"{len(found) or 'pass'} |", flush=True)
-    print(f"\n{passed} of {total} recordings get the report they must "
-          f"({time.perf_counter() - started:.0f} s in all; load average after: "
-          f"{', '.join(f'{x:.2f}' for x in os.getloadavg())})")
+            rows.append([name, seed, recording.expect.summary(),
+                         ", ".join(report["effects"]) or "none", _warnings(report),
+                         _determined(report, recording.truth),
+                         "yes" if report["unexplained"] else "no", f"{seconds:.1f}",
+                         len(found) or "pass"])
+            print(f"{name} seed {seed}: {seconds:.1f} s, {len(found) or 'pass'}", flush=True)
+    out.note(f"**{passed} of {total} recordings get the report they must** "
+             f"({time.perf_counter() - started:.0f} s in all).")
+    out.table(["family", "seed", "expected", "reported effects", "key warnings",
+               "determined (truth)", "unexplained", "s", "misses"], rows)
     if misses:
-        print("\nMisses:")
-        for name, seed, text in misses:
-            print(f"- {name} seed {seed}: {text}")
+        out.note("Misses:\n\n" + "\n".join(f"- {name} seed {seed}: {text}"
+                                            for name, seed, text in misses))
+    out.write()
 
 
 if __name__ == "__main__":

@@ -38,6 +38,7 @@ import sys
 
 from bench_explorer import load_average, machine, pct
 from bench_page import Server, launch
+from results import Results
 
 SLIDERS = ["Fc", "Fs", "V", "delta", "sigma", "k", "s", "z_ba", "m"]
 
@@ -151,7 +152,7 @@ def fmt(values, q) -> str:
     return f"{pct(values, q):6.1f}" if values else "     –"
 
 
-def report_keys(results: dict, sliders: list[str]) -> None:
+def report_keys(results: dict, sliders: list[str], rows, title) -> None:
     labels = list(results)
     print(f"   {'slider':7s}" + "".join(
         f" | {label[:24]:>24s}: right p50/p95, left p50/p95, turns p50" for label in labels))
@@ -171,9 +172,12 @@ def report_keys(results: dict, sliders: list[str]) -> None:
         every = totals[label]
         print(f"   every slider, {label}: p50 {pct(every, .5):.1f} ms, p95 {pct(every, .95):.1f} ms, "
               f"max {max(every):.1f} ms ({len(every)} presses)")
+    rows.append([f"{title}, every slider: p50 / p95 / max"] + [
+        f"{pct(totals[label], .5):.1f} / {pct(totals[label], .95):.1f} / "
+        f"{max(totals[label]):.1f} ms" for label in labels])
 
 
-def report_drags(results: dict, sliders: list[str]) -> None:
+def report_drags(results: dict, sliders: list[str], rows) -> None:
     labels = list(results)
     print(f"   {'slider':7s}" + "".join(
         f" | {label[:24]:>24s}: frames/s, p50, p95, last [ms]" for label in labels))
@@ -185,6 +189,14 @@ def report_drags(results: dict, sliders: list[str]) -> None:
             row += (f" | {figures['fps']:6.1f} {fmt(figures['latencies'], .5)} "
                     f"{fmt(figures['latencies'], .95)} {last}")
         print(row)
+        cells = []
+        for label in labels:
+            figures = drag_figures(results[label][name])
+            last = "–" if figures["last"] is None else f"{figures['last']:.1f}"
+            cells.append(f"{figures['fps']:.1f}/s, {pct(figures['latencies'], .5):.1f}, "
+                         f"{pct(figures['latencies'], .95):.1f}, {last} ms")
+        rows.append([f"drag of {name}: frames per second, p50, p95, last value after the "
+                     f"last input"] + cells)
 
 
 def main(argv=None) -> int:
@@ -200,6 +212,7 @@ def main(argv=None) -> int:
 
     variants = (("the page (live frames)", []),
                 ("Plotly.react per input", ["window.breakaway.live(false)"]))
+    out, rows = Results("ui_latency", __file__), []
     with Server() as server, sync_playwright() as playwright:
         browser = launch(playwright)
         for mode in args.only.split(","):
@@ -218,11 +231,15 @@ def main(argv=None) -> int:
                      "drag": "Pointer drags: 2 s of input events at 60/s, then the release"}[mode]
             print(f"\n{title} (load average {load_average()}), event → frame showing the value [ms]:")
             if mode == "drag":
-                report_drags(results, sliders)
+                report_drags(results, sliders, rows)
             else:
-                report_keys(results, sliders)
+                report_keys(results, sliders, rows, title)
         browser.close()
-    print(f"\nLoad average at the end: {load_average()}")
+    print()
+    out.table(["", *(label for label, _ in variants)], rows)
+    out.note(f"Sliders: {', '.join(sliders)}; {args.presses} presses each; headless Chromium "
+             f"at 1280×800; latency from the event to the frame that shows the value.")
+    out.write()
     return 0
 
 
