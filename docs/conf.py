@@ -47,9 +47,20 @@ html_theme_options = {
     # served by `breakaway serve` under /guide/: the explorer is the site's root
     "external_links": [{"name": "Explorer", "url": "/"},
                        {"name": "HTTP API (OpenAPI)", "url": "/docs"}],
-    "header_links_before_dropdown": 6,
+    # and always in the header, as icons: back to the explorer, the OpenAPI page
+    # (the theme drops icon links of fewer than 3 characters: "/" is "/index.html")
+    "icon_links": [
+        {"name": "Explorer", "url": "/index.html", "icon": "fa-solid fa-sliders",
+         "attributes": {"target": "_self"}},
+        {"name": "HTTP API (OpenAPI)", "url": "/docs", "icon": "fa-solid fa-plug",
+         "attributes": {"target": "_self"}},
+    ],
+    "header_links_before_dropdown": 5,
     "navigation_with_keys": False,
     "show_prev_next": True,
     "footer_start": ["copyright"],
     "footer_end": [],
 }
+# light or dark as the reader's system says, until they choose (an empty mode makes the
+# theme log an error on a first visit)
+html_context = {"default_mode": "auto"}

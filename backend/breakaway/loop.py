@@ -2,7 +2,7 @@
 the run's time series, its stick phases beside the note's (E13), hunting and the RMS
 error.
 
-While the body sticks with e ≠ 0 the integral term ramps u at k = Ki·|e|, so each stick
+While the body sticks with e ≠ 0 the integral term ramps u at ``k = Ki·|e|``, so each stick
 ends in a break-away like the ramp experiment's, which (E13) predicts at that k. A
 stick phase runs from a change of sign of ẋ (the first after a break-away), or t = 0,
 to the next break-away: the presliding fraction reaching z* on the current branch

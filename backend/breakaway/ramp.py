@@ -20,7 +20,7 @@ MAX_POINTS = 2000
 
 
 def presliding_z(x, v, s):
-    """z = s·|x − x_r| along a simulated run [-] (E5).
+    """``z = s·|x − x_r|`` along a simulated run [-] (E5).
 
     Parameters
     ----------

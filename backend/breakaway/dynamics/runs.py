@@ -169,7 +169,7 @@ class LoopRun:
         Where the run ended [s]: the requested duration, or earlier when the step budget
         ran out or the loop ran away.
     runaway : bool
-        Whether the loop ran away (|e| beyond the bound of :mod:`.loop_model`): unstable.
+        Whether the loop ran away (``|e|`` beyond the bound of :mod:`.loop_model`): unstable.
     reversals : int
         Changes of sign of ẋ over the run.
     """
