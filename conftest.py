@@ -45,7 +45,9 @@ class LazyServer:
 
     def start(self) -> str:
         if self.url is None:
-            self._running = serve(data_dir=tempfile.mkdtemp(prefix="breakaway-docs-"))
+            # in a folder of its own: the examples' working folders come and go
+            home = tempfile.mkdtemp(prefix="breakaway-docs-")
+            self._running = serve(cwd=home, data_dir=home)
             self.url = self._running.__enter__()
         return self.url
 

@@ -23,16 +23,17 @@ def free_port() -> int:
 
 
 @contextlib.contextmanager
-def serve(**settings: str) -> Iterator[str]:
-    """The server's base URL while it runs, with ``BREAKAWAY_<NAME>`` settings given;
-    a server that exits or does not answer /api/health within 60 s fails the test."""
+def serve(cwd: str | None = None, **settings: str) -> Iterator[str]:
+    """The server's base URL while it runs in ``cwd``, with ``BREAKAWAY_<NAME>`` settings
+    given; a server that exits or does not answer /api/health within 60 s fails the test.
+    (A server's working directory must outlive it: it starts its fit workers there.)"""
     port = free_port()
     env = {**os.environ, **{f"BREAKAWAY_{name.upper()}": str(value)
                             for name, value in settings.items()}}
     log = open(Path(os.environ.get("TMPDIR", "/tmp")) / f"breakaway-server-{port}.log", "w")
     process = subprocess.Popen([sys.executable, "-m", "breakaway", "serve", "--host",
                                 "127.0.0.1", "--port", str(port)], stdout=log,
-                               stderr=subprocess.STDOUT, env=env)
+                               stderr=subprocess.STDOUT, env=env, cwd=cwd)
     url = f"http://127.0.0.1:{port}"
     try:
         deadline = time.monotonic() + 60
