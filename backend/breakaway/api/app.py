@@ -20,8 +20,8 @@ from .errors import http_error_handler, request_validation_handler
 from .fitworkers import FitWorkers
 from .jobstore import JobStore
 from .middleware import BodySizeLimit, CatchAll, CompressPages, SameOrigin, SecurityHeaders
-from .routers import (assets, explore, export, fit, health, loop, presets, ramp, samples,
-                      simulate)
+from .routers import (assets, explore, export, fit, health, loop, plan, presets, ramp,
+                      samples, simulate)
 from .simulation import SimulationRunner
 
 #: The API, one router per resource.
@@ -34,6 +34,7 @@ ROUTERS: list[APIRouter] = [
     loop.router,
     fit.router,
     export.router,
+    plan.router,
     samples.router,
     assets.router,
 ]

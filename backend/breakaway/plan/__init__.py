@@ -28,6 +28,6 @@ from __future__ import annotations
 
 from .knowledge import PlanError
 from .planner import FAMILIES, plan_experiment
-from .simulate import join, run_design
+from .simulate import join, joint_fit, run_design
 
-__all__ = ["FAMILIES", "PlanError", "join", "plan_experiment", "run_design"]
+__all__ = ["FAMILIES", "PlanError", "join", "joint_fit", "plan_experiment", "run_design"]

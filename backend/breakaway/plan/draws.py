@@ -54,31 +54,39 @@ class Draws:
         return {name: float(value[q, 0]) for name, value in self.P.items()}
 
 
-def open_levels(pieces, count: int) -> np.ndarray:
+def _spaced(low: float, high: float, count: int) -> np.ndarray:
+    if count == 1:
+        return np.array([math.sqrt(low * high) if low > 0 else 0.5 * (low + high)])
+    return np.geomspace(low, high, count) if low > 0 else np.linspace(low, high, count)
+
+
+def open_levels(pieces, count: int, centre: float | None = None) -> np.ndarray:
     """``count`` values across the pieces [(low, high), …] of an open range (a range
     on both sides of the data has two), shared out among the pieces, the first getting
-    the most: geometric for positive pieces, else linear."""
+    the most: geometric for positive pieces, else linear. With a ``centre`` inside a
+    single piece (the value the fit extrapolates to), the middle level is that value."""
+    if centre is not None and len(pieces) == 1 and pieces[0][0] < centre < pieces[0][1] \
+            and count >= 3:
+        low, high = pieces[0]
+        side = count // 2 + 1
+        return np.concatenate([_spaced(low, centre, side), _spaced(centre, high, side)[1:]])
     out = []
     for i, (low, high) in enumerate(pieces):
-        share = -(-(count - len(out)) // (len(pieces) - i))  # ceiling of what is left
-        share = max(share, 1)
-        if share == 1:
-            out.append(math.sqrt(low * high) if low > 0 else 0.5 * (low + high))
-        elif low > 0:
-            out.extend(np.geomspace(low, high, share))
-        else:
-            out.extend(np.linspace(low, high, share))
+        share = max(-(-(count - len(out)) // (len(pieces) - i)), 1)  # ceiling of what is left
+        out.extend(_spaced(low, high, share))
     return np.asarray(out, dtype=float)
 
 
 def make_draws(values: dict, ranges: dict) -> Draws:
     """The draws over the open ``ranges`` (name → list of (low, high) pieces), the other
-    parameters at their ``values``."""
+    parameters at their ``values``; an open parameter's middle level is its value where
+    that lies inside its range."""
     names = [name for name in ranges]
     counts = [LEVELS.get(name, DEFAULT_LEVELS) for name in names]
     if int(np.prod(counts)) > MAX_DRAWS:
         counts = [DEFAULT_LEVELS] * len(names)
-    levels = {name: open_levels(ranges[name], count) for name, count in zip(names, counts)}
+    levels = {name: open_levels(ranges[name], count, values.get(name))
+              for name, count in zip(names, counts)}
     grid = list(itertools.product(*(range(c) for c in counts))) or [()]
     Q = len(grid)
     P = {name: np.full((Q, 1), float(value)) for name, value in values.items()}

@@ -53,9 +53,9 @@ def weak_prior(names, values: dict, force: float, speed: float) -> np.ndarray:
 def existing_information(names, values: dict, covariance) -> np.ndarray:
     """Information (p, p) the existing data hold on the parameters ``names``.
 
-    ``covariance`` is ``(keys, matrix)`` over the parameters the data determine, in
-    their own units (a report's ``final.covariance``), or None. Parameters outside it
-    get none: the data leave them open.
+    ``covariance`` is ``(keys, matrix)`` over the parameters the data give a standard
+    error, in their own units (a report's ``final.covariance``), or None. Parameters
+    outside it get none: the data leave them wholly open.
     """
     p = len(names)
     out = np.zeros((p, p))

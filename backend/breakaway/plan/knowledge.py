@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 
 from ..identify.csvdata.dataset import unit_of
 from ..params import DEFAULTS, check_f_hat, check_fraction, check_stribeck
-from .curve import PARAMETERS
+from .curve import LOG_PARAMETERS, PARAMETERS, symbol
 
 #: The range an open δ is taken over (the shapes friction curves show: from a slow,
 #: stretched fall to a Gaussian one).
@@ -24,6 +24,10 @@ DELTA_RANGE = (0.5, 2.0)
 BELOW_DATA = (0.5, 1e-2)
 #: ... and one above the fastest from this multiple of it up by this factor.
 ABOVE_DATA = (2.0, 1e2)
+#: A loosely determined parameter is taken over this many standard errors either side
+#: of its value, and for a linear one not below this share of it.
+LOOSE_SPREAD = 2.0
+LOOSE_FLOOR = 0.1
 #: A drop is seen when it is higher than this many noise floors.
 SEEN_DROP = 3.0
 #: Without a bound from the data, an open parameter spans its value times these.
@@ -59,15 +63,18 @@ class Knowledge:
     stderr : dict of float or None
         The data's standard errors.
     covariance : tuple or None
-        ``(names, matrix)`` of the determined parameters [their units], or None.
+        ``(names, matrix)`` of the parameters with a standard error [their units], or
+        None.
     given : dict of str
         Parameters taken as given rather than estimated, with why.
     ranges : dict of list
-        The range each open parameter is taken over, as pieces [(low, high), …] (two
-        where it may lie on either side of the data), and ``why_open`` says where it
-        comes from.
+        The range each parameter the data do not determine is taken over, as pieces
+        [(low, high), …] (two where it may lie on either side of the data), and
+        ``why_open`` says where it comes from: two standard errors either side of a
+        loosely determined value (one with a standard error, above the bar), or the
+        bounds the data set on one they leave wholly open.
     noise : float or None
-        The record's noise floor [N].
+        The noise of one measured force of the record [N] (:func:`_record_noise`).
     """
 
     values: dict
@@ -171,6 +178,20 @@ def _open_range(name, values, known, extent, noise, units) -> tuple[list, str]:
     return [(values[name] * low, values[name] * high)], "taken around its fitted value"
 
 
+def _loose_range(name, value, stderr, units) -> tuple[list, str]:
+    """Two standard errors either side of a loosely determined value (a standard error,
+    but above the bar for determined): on the log scale for the scales V and s, kept
+    above zero for the others."""
+    if name in LOG_PARAMETERS:
+        spread = math.exp(LOOSE_SPREAD * stderr / value)
+        piece = (value / spread, value * spread)
+    else:
+        piece = (max(value - LOOSE_SPREAD * stderr, LOOSE_FLOOR * value),
+                 value + LOOSE_SPREAD * stderr)
+    return [piece], (f"the data hold {symbol(name)} = {value:.3g} ± {stderr:.2g} "
+                     f"{units.get(name, '')}, too loosely to call it determined").replace(" ,", ",")
+
+
 def _user_ranges(ranges, path=("ranges",)) -> dict:
     out = {}
     for name, bounds in (ranges or {}).items():
@@ -186,6 +207,65 @@ def _user_ranges(ranges, path=("ranges",)) -> dict:
             raise PlanError(f"ranges.{name} must have low < high, got [{low:g}, {high:g}]", where)
         out[name] = [(low, high)]
     return out
+
+
+def _covariance(entry, errors: dict) -> tuple[list, list]:
+    """``final.covariance`` of a report, over the parameters it gives a standard error."""
+    where = ("report", "final", "covariance")
+    names = entry.get("names") if isinstance(entry, dict) else None
+    matrix = entry.get("matrix") if isinstance(entry, dict) else None
+    if not isinstance(names, list) or not all(isinstance(n, str) for n in names) \
+            or not isinstance(matrix, list) or len(matrix) != len(names) \
+            or not all(isinstance(row, list) and len(row) == len(names) for row in matrix):
+        raise PlanError("report's final.covariance must hold names and a square matrix of "
+                        "as many rows", where)
+    keep = [i for i, n in enumerate(names) if errors.get(n) is not None]
+    rows = [[matrix[i][j] for j in keep] for i in keep]
+    if not all(isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
+               for row in rows for v in row):
+        raise PlanError("report's final.covariance.matrix must hold finite numbers", where)
+    return [names[i] for i in keep], [[float(v) for v in row] for row in rows]
+
+
+#: What a plan reads from a report's ``extent`` (numbers > 0), and its speed span.
+_EXTENT_NUMBERS = ("force", "speed", "held_force", "travel", "duration", "sample_rate")
+
+
+def _extent(given) -> dict:
+    """The report's ``extent``, keeping only what is well formed (an older report has
+    none; the plan then says it assumed what it lacks)."""
+    if not isinstance(given, dict):
+        return {}
+    out = {key: _positive_or_none(given.get(key)) for key in _EXTENT_NUMBERS}
+    span = given.get("speeds")
+    if isinstance(span, list) and len(span) == 2:
+        low, high = (_positive_or_none(v) for v in span)
+        if low is not None and high is not None and low <= high:
+            out["speeds"] = [low, high]
+    return {key: value for key, value in out.items() if value is not None}
+
+
+def _positive_or_none(value) -> float | None:
+    ok = isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
+    return float(value) if ok and value > 0 else None
+
+
+def _record_noise(report: dict, fitted: int) -> float | None:
+    """The noise of one measurement of the record: its scatter about the fit,
+    ``rmse·√(n/(n − p))`` (what the fit's own standard errors are scaled by), where the
+    residual is white; the larger of that and the model-free noise floor where it is not
+    (structure the model lacks scatters a new record too)."""
+    floor = _positive_or_none(report.get("noise_floor"))
+    rmse = _positive_or_none((report.get("final") or {}).get("rmse"))
+    n = report.get("n")
+    scatter = None
+    if rmse is not None and isinstance(n, int) and n > fitted:
+        scatter = rmse * math.sqrt(n / (n - fitted))
+    if scatter is None:
+        return floor
+    if report.get("residual_white") is True or floor is None:
+        return scatter
+    return max(floor, scatter)
 
 
 def from_report(report, ranges=None) -> Knowledge:
@@ -206,13 +286,14 @@ def from_report(report, ranges=None) -> Knowledge:
     final = report.get("final")
     if not isinstance(final, dict) or not isinstance(final.get("params"), dict):
         raise PlanError("report has no final.params", ("report", "final", "params"))
-    params, stderr = final["params"], final.get("stderr") or {}
-    determined = final.get("determined") or {}
+    params = final["params"]
+    stderr = final.get("stderr") if isinstance(final.get("stderr"), dict) else {}
+    determined = final.get("determined") if isinstance(final.get("determined"), dict) else {}
     effects = report.get("effects") or []
-    if not isinstance(effects, list):
+    if not isinstance(effects, list) or not all(isinstance(e, str) for e in effects):
         raise PlanError("report.effects must be a list of names", ("report", "effects"))
     units = _units(report.get("units") if isinstance(report.get("units"), dict) else {})
-    extent = report.get("extent") if isinstance(report.get("extent"), dict) else {}
+    extent = _extent(report.get("extent"))
     values, known, errors, given, notes = {}, {}, {}, {}, []
     for name in ("Fc", "Fs", "V", "delta"):
         if name not in params:
@@ -239,7 +320,8 @@ def from_report(report, ranges=None) -> Knowledge:
             continue
         known[name] = bool(determined.get(name, False))
         se = stderr.get(name)
-        errors[name] = float(se) if isinstance(se, (int, float)) and known[name] else None
+        finite = isinstance(se, (int, float)) and not isinstance(se, bool) and math.isfinite(se)
+        errors[name] = float(se) if finite and se > 0 else None
     try:
         check_stribeck(values["Fc"], values["Fs"], values["V"], values["delta"], values["sigma"])
     except ValueError as err:
@@ -253,26 +335,20 @@ def from_report(report, ranges=None) -> Knowledge:
         values["s"] = math.sqrt(user["s"][0][0] * user["s"][0][1])
     covariance = None
     entry = final.get("covariance")
-    if isinstance(entry, dict) and isinstance(entry.get("names"), list):
-        names = [n for n in entry["names"] if isinstance(n, str)]
-        keep = [i for i, n in enumerate(names) if known.get(n)]
-        try:
-            matrix = [[float(entry["matrix"][i][j]) for j in keep] for i in keep]
-        except (KeyError, IndexError, TypeError, ValueError):
-            raise PlanError("report's final.covariance.matrix must be a square list of "
-                            "numbers matching its names", ("report", "final", "covariance")) from None
-        covariance = ([names[i] for i in keep], matrix)
+    if entry is not None:
+        covariance = _covariance(entry, errors)
     elif any(known.values()):
-        names = [n for n in known if known[n] and errors[n] is not None]
+        names = [n for n in known if errors[n] is not None]
         covariance = (names, [[errors[a] ** 2 if a == b else 0.0 for b in names] for a in names])
         notes.append("The report gives no covariance: the parameters' correlations are "
                      "taken as zero, which understates what a plan can gain.")
-    noise = report.get("noise_floor")
-    noise = float(noise) if isinstance(noise, (int, float)) and noise > 0 else None
+    noise = _record_noise(report, len(params))
     open_ranges, why = {}, {}
     for name in known:
         if name in user:
             open_ranges[name], why[name] = user[name], "the range given"
+        elif not known[name] and errors[name] is not None:
+            open_ranges[name], why[name] = _loose_range(name, values[name], errors[name], units)
         elif not known[name] and not math.isnan(values[name]):
             open_ranges[name], why[name] = _open_range(name, values, known, extent, noise, units)
     other = [e for e in effects if e not in MODELLED_EFFECTS]

@@ -29,7 +29,7 @@ from .search import choose_one, choose_runs, criterion
 from .setpoints import SetPoints
 from .setting import DEFAULT_GRID, DEFAULT_RUNS, Setting
 from .sine import Sine
-from .words import describe
+from .words import describe, json_safe
 
 FAMILIES = {family.name: family for family in (Ramps(), SetPoints(), Sine())}
 #: The noise assumed without a record, as a share of the Coulomb level.
@@ -76,9 +76,9 @@ def _noise(knowledge: Knowledge, noise, family: str) -> tuple[float, list[str]]:
         notes = []
         if family != {"breakaway": "ramps", "steady": "steady",
                       "timeseries": "sine"}[knowledge.kind]:
-            notes.append(f"The noise of one measurement is taken as the record's noise "
-                         f"floor, {knowledge.noise:.3g} {F}; give the noise if this rig's "
-                         "differs for this kind of run.")
+            notes.append(f"The noise of one measurement is taken as the record's, "
+                         f"{knowledge.noise:.3g} {F}; give the noise if this rig's differs for "
+                         "this kind of run.")
         return knowledge.noise, notes
     value = ASSUMED_NOISE_SHARE * knowledge.values["Fc"]
     return value, [f"No record gives the noise: {value:.3g} {F} ({100 * ASSUMED_NOISE_SHARE:g} % "
@@ -119,6 +119,10 @@ def _targets(requested, knowledge: Knowledge, family, names, given) -> tuple[lis
             dropped[name] = f"{symbol(name)} is taken as given: {given[name]}"
         elif name not in family.depends:
             dropped[name] = not_measured(name, family.name)
+        elif name in ("V", "delta") and "Fs" not in knowledge.ranges \
+                and knowledge.values["Fs"] <= knowledge.values["Fc"]:
+            dropped[name] = (f"{symbol(name)} describes a Stribeck drop that is not there "
+                             "(Fs = Fc): no run determines it")
         elif name not in chosen:
             chosen.append(name)
     return chosen, dropped
@@ -224,9 +228,19 @@ def plan_experiment(family: str, report: dict | None = None, params: dict | None
     if grid is not None and (isinstance(grid, bool) or not isinstance(grid, int) or grid < 4):
         raise PlanError(f"grid must be a whole number >= 4, got {grid!r}", ("grid",))
     knowledge = _knowledge(report, params, ranges)
-    outcome = _outcome(knowledge, FAMILIES[family], limits, runs, noise, targets, grid)
-    result = describe(outcome, knowledge, lambda other, names: _would_determine(
-        knowledge, other, limits, noise, names))
+    try:
+        outcome = _outcome(knowledge, FAMILIES[family], limits, runs, noise, targets, grid)
+        result = describe(outcome, knowledge, lambda other, names: _would_determine(
+            knowledge, other, limits, noise, names))
+    except PlanError:
+        raise
+    except (np.linalg.LinAlgError, ArithmeticError, ValueError) as err:
+        # magnitudes no rig has (a Stribeck velocity of 1e-30 beside forces of 1e30)
+        # overflow the algebra: say so about the model given, never fail
+        raise PlanError(f"the plan cannot be computed for these values ({err}); check the "
+                        "model's magnitudes", ("report",) if report is not None else ("params",)
+                        ) from err
+    result = json_safe(result)
     result["seconds"] = round(time.perf_counter() - started, 4)
     return result
 

@@ -74,4 +74,60 @@ def join(first: Dataset, second: Dataset) -> Dataset:
     return _dataset(first.kind, columns, first.meta, segments)
 
 
-__all__ = ["join", "run_design"]
+
+
+def joint_fit(records, start: dict, noise) -> dict:
+    """Least squares on several records at once, of any kinds, with shared parameters:
+    the refit of an earlier record and a plan's new one when their kinds differ (a
+    steady curve and a sine). Each record's residual is divided by its noise, so the
+    standard errors follow from the Jacobian alone.
+
+    Parameters
+    ----------
+    records : sequence of Dataset
+    start : dict
+        Starting values of ``Fc``, ``Fs``, ``V``, ``delta`` and, when a time series is
+        among the records, ``s``; a break-away record takes the shared ``s`` in place of
+        the one it was read with.
+    noise : sequence of float
+        Standard deviation of one force of each record [N].
+
+    Returns
+    -------
+    dict
+        ``params``, ``stderr`` and ``determined`` (relative standard error at most one,
+        no correlation above 0.99), keyed like a report's.
+    """
+    from scipy.optimize import least_squares
+
+    from ..identify.models import problem_for
+    from .fisher import verdicts
+
+    problems = [problem_for(record) for record in records]
+    names = ["Fc", "Fs", "V", "delta"] + (["s"] if any(r.kind == "timeseries" for r in records)
+                                          else [])
+    log = np.array([name in ("V", "s") for name in names])
+
+    def params(theta):
+        return {name: float(np.exp(v) if lg else v) for name, v, lg in zip(names, theta, log)}
+
+    def residual(theta):
+        p = params(theta)
+        parts = []
+        for pb, sigma in zip(problems, noise):
+            if pb.kind == "breakaway" and "s" in p:
+                pb.s = p["s"]
+            parts.append((pb.predict(p) - pb.measured) / sigma)
+        r = np.concatenate(parts)
+        return np.where(np.isfinite(r), r, 1e6)
+
+    theta0 = np.array([np.log(start[n]) if lg else start[n] for n, lg in zip(names, log)])
+    result = least_squares(residual, theta0, method="trf", x_scale="jac")
+    found = params(result.x)
+    cov = np.linalg.pinv(result.jac.T @ result.jac)
+    stderr, determined = verdicts(cov[None], names, {n: np.array([[v]]) for n, v in found.items()})
+    return {"params": found, "stderr": dict(zip(names, stderr[0].tolist())),
+            "determined": dict(zip(names, determined[0].tolist()))}
+
+
+__all__ = ["join", "joint_fit", "run_design"]

@@ -8,7 +8,7 @@ import math
 
 import numpy as np
 
-from .curve import symbol
+from .curve import PARAMETERS, SYMBOLS, symbol
 from .honesty import OTHER_FAMILIES, open_values, why_open
 
 
@@ -17,6 +17,22 @@ def _clean(value):
         return None
     value = float(value)
     return value if math.isfinite(value) else None
+
+
+def json_safe(value):
+    """``value`` with every non-finite number (and NumPy scalar) made JSON-safe: NaN
+    and infinities become None."""
+    if isinstance(value, dict):
+        return {key: json_safe(item) for key, item in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [json_safe(item) for item in value]
+    if isinstance(value, (bool, np.bool_)):
+        return bool(value)
+    if isinstance(value, (int, np.integer)):
+        return int(value)
+    if isinstance(value, (float, np.floating)):
+        return _clean(value)
+    return value
 
 
 def _predicted(outcome, knowledge) -> dict:
@@ -59,6 +75,15 @@ def _predicted(outcome, knowledge) -> dict:
     return out
 
 
+def _sentence(text: str) -> str:
+    """``text`` as a sentence: a capital first letter, unless it starts with a
+    parameter's symbol (s, δ), which keeps its case."""
+    first = text.split(" ", 1)[0]
+    if first in PARAMETERS or first in SYMBOLS.values():
+        return text + "."
+    return text[0].upper() + text[1:] + "."
+
+
 def _open_sentence(knowledge, outcome) -> list[str]:
     units = knowledge.units
     out = []
@@ -67,7 +92,7 @@ def _open_sentence(knowledge, outcome) -> list[str]:
             unit = units.get(name, "")
             spans = " and ".join(f"from {low:.3g} to {high:.3g}"
                                  for low, high in knowledge.ranges[name])
-            out.append(f"{symbol(name)} is open: {knowledge.why_open.get(name)}; the plan "
+            out.append(f"{symbol(name)} is not determined: {knowledge.why_open.get(name)}; the plan "
                        f"holds for {symbol(name)} {spans} {unit}".rstrip() + ".")
     return out
 
@@ -78,7 +103,7 @@ def describe(outcome, knowledge, would) -> dict:
     family, setting = outcome.family, outcome.setting
     notes = list(knowledge.notes) + list(outcome.notes)
     notes += _open_sentence(knowledge, outcome)
-    notes += [f"{text[0].upper()}{text[1:]}." for text in outcome.dropped.values()]
+    notes += [_sentence(text) for text in outcome.dropped.values()]
     design = None
     reason = ""
     if not outcome.targets:
@@ -133,4 +158,4 @@ def _left_open(outcome, knowledge, would) -> list[str]:
     return notes
 
 
-__all__ = ["describe"]
+__all__ = ["describe", "json_safe"]
