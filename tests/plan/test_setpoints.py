@@ -25,6 +25,18 @@ def test_a_run_is_two_measurements_of_the_curve():
                                rtol=1e-12)
 
 
+def test_a_speed_that_takes_more_than_u_max_at_a_draw_yields_nothing_there():
+    draws = {**P, "sigma": np.array([[100.0], [400.0]]), "Fc": np.full((2, 1), 10.0)}
+    draws = {name: np.broadcast_to(value, (2, 1)) for name, value in draws.items()}
+    family = SetPoints()
+    cands = family.candidates(draws, _setting(12.0), middle=0)
+    info = family.information(cands, draws, _setting(12.0), ["Fc", "Fs"], middle=0)
+    assert info.usable[0].all()
+    # σ = 400 N·s/m: above (12 − 10)/400 = 5 mm/s the rig cannot hold the speed
+    np.testing.assert_array_equal(info.usable[1], magnitude(cands.points["v"], draws)[0][1] <= 12)
+    assert not info.usable[1].all() and np.all(info.matrix[1][~info.usable[1]] == 0)
+
+
 def test_speeds_stay_between_v_min_and_v_max_and_below_the_force_limit():
     family = SetPoints()
     # σ·v pushes the force over 12 N above (12 − 10)/100 = 0.02 m/s

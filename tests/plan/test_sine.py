@@ -72,5 +72,5 @@ def test_candidates_respect_travel_speed_and_force():
     info = family.information(cands, P, setting, NAMES)
     # the loops that reach Fs = 1.5 > u_max are not run; those that stay below are
     peak = info.predicted["peak_force"][0]
-    assert np.all(info.usable[0] == (peak <= 1.45))
+    np.testing.assert_array_equal(info.usable[0], peak <= 1.45)
     assert info.usable.any() and not info.usable.all()

@@ -77,15 +77,15 @@ def open_levels(pieces, count: int, centre: float | None = None) -> np.ndarray:
     return np.asarray(out, dtype=float)
 
 
-def make_draws(values: dict, ranges: dict) -> Draws:
+def make_draws(values: dict, ranges: dict, centres: dict | None = None) -> Draws:
     """The draws over the open ``ranges`` (name → list of (low, high) pieces), the other
-    parameters at their ``values``; an open parameter's middle level is its value where
-    that lies inside its range."""
+    parameters at their ``values``; a parameter with a ``centres`` entry (a loosely
+    determined one: its estimate) has that as its middle level."""
     names = [name for name in ranges]
     counts = [LEVELS.get(name, DEFAULT_LEVELS) for name in names]
     if int(np.prod(counts)) > MAX_DRAWS:
         counts = [DEFAULT_LEVELS] * len(names)
-    levels = {name: open_levels(ranges[name], count, values.get(name))
+    levels = {name: open_levels(ranges[name], count, (centres or {}).get(name))
               for name, count in zip(names, counts)}
     grid = list(itertools.product(*(range(c) for c in counts))) or [()]
     Q = len(grid)

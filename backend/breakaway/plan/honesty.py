@@ -64,6 +64,17 @@ def why_open(outcome, knowledge, name: str) -> list[str]:
                        f"the rig holds (v_min = {_fmt(limits.v_min)} {units['v']}): set-points "
                        "cannot show it; it needs presliding data (ramps at slow rates, whose "
                        "break-away speed goes far lower, or a sine through reversals)")
+    if name in ("V", "delta") and failing.size:
+        P = draws.P
+        # where the drop begins: exp(−(v/V)^δ) = 0.9
+        begins = P["V"][failing, 0] * np.power(math.log(1 / 0.9), 1.0 / P["delta"][failing, 0])
+        above = begins > limits.v_max
+        if above.any():
+            worst = failing[above][0]
+            out.append(f"at V = {_fmt(P['V'][worst, 0])} {units['V']} the Stribeck drop begins "
+                       f"at {_fmt(begins[above][0])} {units['v']}, above the largest speed the "
+                       f"rig may reach (v_max = {_fmt(limits.v_max)} {units['v']}): only a "
+                       "faster rig shows it")
     if outcome.information is not None and failing.size:
         silent = ~outcome.information.usable[failing].any(axis=1)
         if silent.any():

@@ -142,12 +142,14 @@ def _outcome(knowledge: Knowledge, family, limits, runs, noise, targets, grid,
     if not chosen:
         return empty
     ranges = {name: knowledge.ranges[name] for name in names if name in knowledge.ranges}
-    draws = make_draws({n: knowledge.values[n] for n in PARAMETERS}, ranges)
-    cands = family.candidates(draws.P, setting)
+    loose = {name: knowledge.values[name] for name in ranges
+             if knowledge.stderr.get(name) is not None}
+    draws = make_draws({n: knowledge.values[n] for n in PARAMETERS}, ranges, loose)
+    cands = family.candidates(draws.P, setting, draws.middle)
     empty.draws, empty.candidates = draws, cands
     if cands.size == 0:
         return empty
-    info = family.information(cands, draws.P, setting, names)
+    info = family.information(cands, draws.P, setting, names, draws.middle)
     middle = draws.at(draws.middle)
     prior = weak_prior(names, middle, float(np.max(draws.P["Fs"])), setting.limits.v_max)
     now = existing_information(names, knowledge.values, knowledge.covariance) + prior

@@ -88,7 +88,7 @@ class Ramps:
     #: the limits its runs are bound by
     limits = ("u_max", "v_max", "duration")
 
-    def candidates(self, P, setting) -> Candidates:
+    def candidates(self, P, setting, middle: int = 0) -> Candidates:
         """Rates from the slowest whose ramp can reach the Coulomb level within a run
         to the fastest whose break-away speed stays below ``v_max`` at every draw."""
         lim = setting.limits
@@ -112,7 +112,7 @@ class Ramps:
         """Where each ramp stops [N]: the force limit, or the force reached in a run."""
         return np.minimum(setting.limits.u_max, np.asarray(k) * setting.limits.duration)
 
-    def information(self, cands: Candidates, P, setting, names) -> Information:
+    def information(self, cands: Candidates, P, setting, names, middle: int = 0) -> Information:
         k = cands.points["k"]
         F_ba, speed, partial = breakaway_measurement(k, P, setting.F_hat, setting.z_ba)
         usable = F_ba < END_MARGIN * self.end_force(k, setting)

@@ -28,26 +28,27 @@ class SetPoints:
     #: the limits its runs are bound by
     limits = ("u_max", "v_max", "v_min")
 
-    def candidates(self, P, setting) -> Candidates:
-        """Speeds from the slowest the rig holds to ``v_max``, where the force the rig
-        must apply stays below ``u_max`` at every draw."""
+    def candidates(self, P, setting, middle: int = 0) -> Candidates:
+        """Speeds from the slowest the rig holds to ``v_max`` where the force the rig
+        must apply stays below ``u_max`` at the middle draw (the best guess)."""
         lim = setting.limits
         if lim.v_min >= lim.v_max:
             return Candidates({}, f"v_min = {lim.v_min:.3g} is not below v_max = "
                                   f"{lim.v_max:.3g} {setting.units['v']}")
         v = np.geomspace(lim.v_min, lim.v_max, setting.grid)
-        force = magnitude(v, P)[0]
-        within = np.all(force <= lim.u_max, axis=0)
+        force = magnitude(v, P)[0][middle]
+        within = force <= lim.u_max
         if not within.any():
             return Candidates({}, (
                 f"at every speed between v_min and v_max the friction exceeds u_max = "
                 f"{lim.u_max:.4g} {setting.units['F']} (it is at least "
-                f"{float(np.min(np.max(force, axis=0))):.4g} {setting.units['F']})"))
+                f"{float(np.min(force)):.4g} {setting.units['F']})"))
         return Candidates({"v": v[within]})
 
-    def information(self, cands: Candidates, P, setting, names) -> Information:
+    def information(self, cands: Candidates, P, setting, names, middle: int = 0) -> Information:
         value, _, partial = magnitude(cands.points["v"], P)
-        usable = np.ones(value.shape, dtype=bool)
+        # at a draw where holding the speed takes more than u_max, the run yields nothing
+        usable = value <= setting.limits.u_max
         return from_rows(partial, names, np.sqrt(DIRECTIONS) / setting.noise, usable,
                          {"F": value})
 

@@ -189,7 +189,7 @@ class Sine:
     #: the limits its runs are bound by
     limits = ("u_max", "v_max", "travel", "duration", "sample_rate")
 
-    def candidates(self, P, setting) -> Candidates:
+    def candidates(self, P, setting, middle: int = 0) -> Candidates:
         """Amplitudes from a fifth of the shortest presliding distance to half the
         travel, frequencies from two periods per record to the fastest that keeps the
         peak speed 2π·f·A below ``v_max`` and twenty samples per period."""
@@ -211,7 +211,7 @@ class Sine:
         fits = 2 * np.pi * f * A <= lim.v_max * (1 + 1e-12)
         return Candidates({"amplitude": A[fits], "frequency": f[fits]})
 
-    def information(self, cands: Candidates, P, setting, names) -> Information:
+    def information(self, cands: Candidates, P, setting, names, middle: int = 0) -> Information:
         lim = setting.limits
         shortest, longest = 1.0 / np.max(P["s"]), 1.0 / np.min(P["s"])
         samples = [sine_samples(A, f, lim.duration, lim.sample_rate, setting.noise,
@@ -226,9 +226,9 @@ class Sine:
         info = np.zeros((theta.shape[0], x.shape[0], columns.size, columns.size))
         peak = np.zeros((theta.shape[0], x.shape[0]))
         _sine_information(theta, columns, x, v, log_speed, d, weight, info, peak)
-        # a sine the rig cannot drive at some draw is not run at all
-        drivable = np.all(peak <= lim.u_max, axis=0)
-        usable = np.broadcast_to(drivable, peak.shape)
+        # a sine that takes more than u_max at the middle draw (the best guess) is not
+        # run at all; at another draw, one that does yields nothing there
+        usable = (peak <= lim.u_max) & (peak[middle] <= lim.u_max)
         matrix = np.where(usable[..., None, None], info, 0.0)
         return Information(None, matrix, usable, {"peak_force": peak})
 
