@@ -56,6 +56,8 @@ class Outcome:
     determined_after: np.ndarray | None
     notes: list
     dropped: dict
+    #: (Q, p, p) what is known before the plan, at each draw
+    known: np.ndarray | None = None
 
     def determined_over_range(self, name: str) -> bool:
         """Whether the plan determines ``name`` at every value across its open range (the
@@ -164,7 +166,7 @@ def _outcome(knowledge: Knowledge, family, limits, runs, noise, targets, grid,
     stderr, determined = verdicts(covariance(after), names, draws.P)
     return Outcome(family, setting, names, chosen, draws, cands, info, counts,
                    criterion(now, index), criterion(after, index), stderr, determined,
-                   notes, dropped)
+                   notes, dropped, now)
 
 
 def _knowledge(report, params, ranges) -> Knowledge:

@@ -9,7 +9,7 @@ from dataclasses import dataclass, field
 DEFAULT_RUNS = {"ramps": 12, "steady": 12, "sine": 1}
 #: Default number of candidate design points (rates, speeds; the sine's amplitudes
 #: times its frequencies).
-DEFAULT_GRID = {"ramps": 96, "steady": 96, "sine": 144}
+DEFAULT_GRID = {"ramps": 96, "steady": 96, "sine": 100}
 
 
 @dataclass(frozen=True)

@@ -54,68 +54,65 @@ def _sine_information(theta, columns, x, v, log_speed, d, weight, info, peak):
     """
     Q, G, N = theta.shape[0], x.shape[0], x.shape[1]
     p = columns.size
-    grad = np.zeros(7)
-    grad_r = np.zeros(7)
-    last = np.zeros(7)
-    acc = np.zeros((p, p))
-    for q in range(Q):
+    for job in range(Q * G):
+        q, g = job // G, job % G
         Fc, Fs, V, delta, s, sigma, n = theta[q]
         drop = Fs - Fc
         log_V = math.log(V)
-        for g in range(G):
-            x_r, F_r, F_last = 0.0, 0.0, 0.0
-            grad_r[:] = 0.0
-            last[:] = 0.0
-            acc[:, :] = 0.0
-            top = 0.0
-            for i in range(N):
-                w = weight[g, i]
-                if i > 0 and d[g, i] != d[g, i - 1]:
-                    x_r, F_r = x[g, i - 1], F_last
-                    grad_r[:] = last
-                speed = abs(v[g, i])
-                sign_v = 1.0 if v[g, i] > 0 else (-1.0 if v[g, i] < 0 else 0.0)
-                direction = d[g, i]
-                if speed > 0:
-                    ratio = log_speed[g, i] - log_V
-                    y = math.exp(delta * ratio)
-                    decay = math.exp(-y)
-                    power = speed if n == 1.0 else math.exp(n * log_speed[g, i])
-                    grad[2] = direction * drop * delta * y * decay
-                    grad[3] = -direction * drop * y * decay * ratio
-                    grad[5] = sign_v * power
-                    grad[6] = sign_v * sigma * power * log_speed[g, i]
-                else:
-                    decay = 1.0 if delta > 0 else 0.0
-                    power = 0.0
-                    grad[2] = grad[3] = grad[5] = grad[6] = 0.0
-                grad[0] = direction * (1.0 - decay)
-                grad[1] = direction * decay
-                grad[4] = 0.0
-                target = direction * (Fc + drop * decay) + sign_v * sigma * power
-                z = s * abs(x[g, i] - x_r)
-                if z >= 1.0:
-                    shape, slope = 1.0, 0.0
-                elif z > 0.0:
-                    shape, slope = z * (1.0 - math.log(z)), -math.log(z)
-                else:
-                    shape, slope = 0.0, 0.0
-                F = F_r + (target - F_r) * shape
-                for j in range(7):
-                    last[j] = grad_r[j] * (1.0 - shape) + grad[j] * shape
-                last[4] += (target - F_r) * slope * z  # ∂z/∂ln s = z
-                F_last = F
-                top = max(top, abs(F))
-                if w > 0:
-                    for a in range(p):
-                        la = w * last[columns[a]]
-                        for b in range(a, p):
-                            acc[a, b] += la * last[columns[b]]
-            for a in range(p):
-                for b in range(a, p):
-                    info[q, g, a, b] = acc[a, b]
-                    info[q, g, b, a] = acc[a, b]
-            peak[q, g] = top
+        grad = np.zeros(7)
+        grad_r = np.zeros(7)
+        last = np.zeros(7)
+        acc = np.zeros((p, p))
+        x_r, F_r, F_last = 0.0, 0.0, 0.0
+        top = 0.0
+        for i in range(N):
+            w = weight[g, i]
+            if i > 0 and d[g, i] != d[g, i - 1]:
+                x_r, F_r = x[g, i - 1], F_last
+                grad_r[:] = last
+            speed = abs(v[g, i])
+            sign_v = 1.0 if v[g, i] > 0 else (-1.0 if v[g, i] < 0 else 0.0)
+            direction = d[g, i]
+            if speed > 0:
+                ratio = log_speed[g, i] - log_V
+                y = math.exp(delta * ratio)
+                decay = math.exp(-y)
+                power = speed if n == 1.0 else math.exp(n * log_speed[g, i])
+                grad[2] = direction * drop * delta * y * decay
+                grad[3] = -direction * drop * y * decay * ratio
+                grad[5] = sign_v * power
+                grad[6] = sign_v * sigma * power * log_speed[g, i]
+            else:
+                decay = 1.0 if delta > 0 else 0.0
+                power = 0.0
+                grad[2] = grad[3] = grad[5] = grad[6] = 0.0
+            grad[0] = direction * (1.0 - decay)
+            grad[1] = direction * decay
+            grad[4] = 0.0
+            target = direction * (Fc + drop * decay) + sign_v * sigma * power
+            z = s * abs(x[g, i] - x_r)
+            if z >= 1.0:
+                shape, slope = 1.0, 0.0
+            elif z > 0.0:
+                shape, slope = z * (1.0 - math.log(z)), -math.log(z)
+            else:
+                shape, slope = 0.0, 0.0
+            F = F_r + (target - F_r) * shape
+            for j in range(7):
+                last[j] = grad_r[j] * (1.0 - shape) + grad[j] * shape
+            last[4] += (target - F_r) * slope * z  # ∂z/∂ln s = z
+            F_last = F
+            top = max(top, abs(F))
+            if w > 0:
+                for a in range(p):
+                    la = w * last[columns[a]]
+                    for b in range(a, p):
+                        acc[a, b] += la * last[columns[b]]
+        for a in range(p):
+            for b in range(a, p):
+                info[q, g, a, b] = acc[a, b]
+                info[q, g, b, a] = acc[a, b]
+        peak[q, g] = top
 
 
 def _branch_times(amplitude, omega, reach_lo, reach_hi, half):
