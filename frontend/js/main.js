@@ -1,41 +1,46 @@
 // The explorer page: start-up, the tabs, the link to the data panel, and the hooks for
-// tests and scripts (window.breakaway). The page's modules, each with one job:
-//   store.js        the state and the signals (#plots data-ready, data-frame, …)
-//   render.js       the one render path: state → request → figures → plots
-//   views.js        the registry of views the render path walks
-//   modelviews.js   the four model plots; rampview.js the ramp experiment;
-//                   loopview.js the control loop (its controls, state and sentence)
-//   viewrequests.js the views with requests of their own; simulation.js the simulated
-//                   points; lessons.js pin, sweep and tour; inputs.js the controls;
-//                   phone.js the plot in view on a phone
+// tests and scripts (window.breakaway). The page's modules, grouped by what they serve:
+//   page/       the state and its signals (store.js, state.js), the one render path
+//               (render.js) over the registry of views (views.js, viewrequests.js), the
+//               controls (controls.js, inputs.js), the plot in view on a phone (phone.js)
+//               and the requests to the server (api.js)
+//   models/     the model computed in the page: the curves (model.js), the integrator
+//               and the ramp's and the loop's dynamic models (loopworker.js runs the
+//               loop off the main thread)
+//   plots/      the four model plots (plots.js, modelviews.js), the colours, the live
+//               drawing while a hand moves (livedraw.js, axes.js) and Plotly's
+//               (surfaces.js, draw.js), and the exports
+//   ramp/       the ramp experiment and the simulated break-away points
+//   loop/       the control loop: its state, controls, plots and sentence
+//   datapanel/  measured data: the fit, its tables and figures, the quiz, the outputs
+//   teaching/   pin, sweep and the guided tour
 //
 // For tests and scripts: #plots carries data-ready="true|false" and data-frame=<count>;
 // window.breakaway.ready() resolves once the plots show the current state (or its
 // inline errors), window.breakaway.simReady() once the simulation points are settled.
 
-import { getJSON } from "./api.js";
-import { PARAMS, buildControls, paramSpec, setParams, writeControls } from "./controls.js";
-import { fitReady, fitReport, initDataPanel } from "./datapanel.js";
-import { explorerParams, measuredOverlay } from "./fitparams.js";
-import { setState, wireControls } from "./inputs.js";
-import { wireLessons } from "./lessons.js";
+import { getJSON } from "./page/api.js";
+import { PARAMS, buildControls, paramSpec, setParams, writeControls } from "./page/controls.js";
+import { fitReady, fitReport, initDataPanel } from "./datapanel/datapanel.js";
+import { explorerParams, measuredOverlay } from "./datapanel/fitparams.js";
+import { setState, wireControls } from "./page/inputs.js";
+import { wireLessons } from "./teaching/lessons.js";
 import {
   fittedLoop, initLoop, loopReady, openLoopView,
-} from "./loopview.js";
-import "./modelviews.js";
-import { PALETTE } from "./palette.js";
-import { initPhone } from "./phone.js";
-import { wireRamp } from "./rampview.js";
-import { SETTLE_MS, refresh, showServerError } from "./render.js";
-import { wireSimulation } from "./simulation.js";
-import { fromQuery, toQuery } from "./state.js";
+} from "./loop/loopview.js";
+import "./plots/modelviews.js";
+import { initPhone } from "./page/phone.js";
+import { wireRamp } from "./ramp/rampview.js";
+import { SETTLE_MS, refresh, showServerError } from "./page/render.js";
+import { wireSimulation } from "./ramp/simulation.js";
+import { fromQuery, toQuery } from "./page/state.js";
 import {
   $, app, setBusy, updateSimBusy, whenIdle,
-} from "./store.js";
-import { surfaceStats } from "./surfaces.js";
-import { withTraces } from "./teach.js";
-import { viewsBusy } from "./viewrequests.js";
-import { registerOverlay } from "./views.js";
+} from "./page/store.js";
+import { surfaceStats } from "./plots/surfaces.js";
+import { withTraces } from "./teaching/teach.js";
+import { viewsBusy } from "./page/viewrequests.js";
+import { registerOverlay } from "./page/views.js";
 
 /** The measured points of a fit, on the plot that matches the data's kind. */
 registerOverlay((figures) => {

@@ -329,7 +329,7 @@ def test_the_steepest_fall_the_sentence_quotes_is_the_stribeck_curves(explorer, 
     from breakaway.steady import steady_state_force
 
     explorer.open("?sim=0")
-    fall = explorer.page.evaluate("""async (delta) => (await import('/js/loopexplain.js'))
+    fall = explorer.page.evaluate("""async (delta) => (await import('/js/loop/loopexplain.js'))
         .steepestFall({Fc: 1, Fs: 1.5, V: 100, delta})""", delta)
     v = np.geomspace(1e-3, 1e4, 400_001)
     slope = -np.gradient(steady_state_force(v, 1.0, 1.5, 100.0, delta, 0.0), v)

@@ -1,4 +1,4 @@
-"""The model's curves computed in the page (frontend/js/model.js) against the Python
+"""The model's curves computed in the page (frontend/js/models/model.js) against the Python
 model (breakaway.frame.explore_frame), for the frames drawn while a hand moves a slider."""
 
 from __future__ import annotations
@@ -31,7 +31,7 @@ RTOL = 1e-12
 
 def page_frame(explorer, params: dict) -> dict:
     return explorer.page.evaluate(
-        """async (p) => (await import('/js/model.js')).modelFrame(p)""", params)
+        """async (p) => (await import('/js/models/model.js')).modelFrame(p)""", params)
 
 
 def assert_close(actual, expected, what: str) -> None:

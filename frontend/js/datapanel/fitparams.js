@@ -2,8 +2,8 @@
 // "Use these parameters" (with the slider ranges widened to the data's scale), the
 // measured points to overlay on the matching plot, and the message of a bad file.
 
-import { ApiError } from "./api.js";
-import { PARAMS, roundSignificant } from "./controls.js";
+import { ApiError } from "../page/api.js";
+import { PARAMS, roundSignificant } from "../page/controls.js";
 
 /** Explorer parameters that "Use these parameters" sets (rounded to this many digits). */
 const DIGITS = 6;

@@ -2,10 +2,10 @@
 // the points of the break-away plot. Debounced and abortable, run once a frame is drawn
 // and only redrawing the break-away plot, so they never hold up a slider.
 
-import { postJSON } from "./api.js";
-import { onFrameDrawn, onStateLeft, redraw } from "./render.js";
-import { $, app, commit, updateSimBusy } from "./store.js";
-import { simulateBody } from "./state.js";
+import { postJSON } from "../page/api.js";
+import { onFrameDrawn, onStateLeft, redraw } from "../page/render.js";
+import { $, app, commit, updateSimBusy } from "../page/store.js";
+import { simulateBody } from "../page/state.js";
 
 const SIM_DEBOUNCE_MS = 350;
 

@@ -14,12 +14,12 @@
 
 import { ApiError, postJSON } from "./api.js";
 import { showErrors, validate } from "./controls.js";
-import { PLOT_CONFIG, pageStyle } from "./draw.js";
-import { modelFrame } from "./model.js";
-import { styled } from "./plots.js";
+import { PLOT_CONFIG, pageStyle } from "../plots/draw.js";
+import { modelFrame } from "../models/model.js";
+import { styled } from "../plots/plots.js";
 import { exploreBody, matchingPreset } from "./state.js";
 import { $, app, setBusy, updateSimBusy } from "./store.js";
-import { live, settle } from "./surfaces.js";
+import { live, settle } from "../plots/surfaces.js";
 import { frameViewIds, pageFigures } from "./views.js";
 
 /** The explorer's plots export through the page's own buttons (CSV, PNG). */

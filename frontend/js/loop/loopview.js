@@ -8,8 +8,8 @@
 // time). Once a state rests, the variants the sentence quotes (Fs = Fc, more Kd,
 // compensation switched) are run too, at most four, the previous ones aborted.
 
-import { postJSON } from "./api.js";
-import { validate } from "./controls.js";
+import { postJSON } from "../page/api.js";
+import { validate } from "../page/controls.js";
 import { buildLoopControls, widenLoopRange } from "./loopcontrols.js";
 import { explainLoop, summarise, whatIfStates } from "./loopexplain.js";
 import { LOOP_AXES, loopFigures, phaseRows } from "./loopplots.js";
@@ -17,12 +17,12 @@ import {
   LOOP_CONTROLS, fittedLoopState, loadLoopDefaults, localLoop, loopBody, loopDefaults, readLoop,
   writeLoop,
 } from "./loopstate.js";
-import { onPhone, plotMovedBy, showPlotInView } from "./phone.js";
-import { onStateLeft } from "./render.js";
-import { registerStatePart } from "./state.js";
-import { $, app, whenIdle } from "./store.js";
-import { viewResult, viewsBusy } from "./viewrequests.js";
-import { registerView } from "./views.js";
+import { onPhone, plotMovedBy, showPlotInView } from "../page/phone.js";
+import { onStateLeft } from "../page/render.js";
+import { registerStatePart } from "../page/state.js";
+import { $, app, whenIdle } from "../page/store.js";
+import { viewResult, viewsBusy } from "../page/viewrequests.js";
+import { registerView } from "../page/views.js";
 
 const LOOP_DEBOUNCE_MS = 30;
 /** The variants are asked for once the state has rested this long [ms]. */

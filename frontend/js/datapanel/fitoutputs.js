@@ -3,9 +3,9 @@
 // steady report has no presliding scale: the export takes the one in the panel's box
 // (the explorer's s to start with). A failed export says what the server named.
 
-import { ApiError } from "./api.js";
-import { parseNumber } from "./controls.js";
-import { download } from "./export.js";
+import { ApiError } from "../page/api.js";
+import { parseNumber } from "../page/controls.js";
+import { download } from "../plots/export.js";
 
 const LANGS = { json: "JSON", python: "Python", c: "C99" };
 const $ = (id) => document.getElementById(id);

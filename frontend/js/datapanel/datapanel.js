@@ -9,13 +9,13 @@
 // once no fit is running. What a fit gives the explorer is fitparams.js's; the quiz of
 // the mystery samples is quiz.js's.
 
-import { ApiError, getJSON } from "./api.js";
+import { ApiError, getJSON } from "../page/api.js";
 import {
   cancelJob, isActive, pollJob, residualsCsv, sampleFile, submitFit,
 } from "./fitjob.js";
-import { paramSpec } from "./controls.js";
-import { drawFigure, onSchemeChange } from "./draw.js";
-import { download } from "./export.js";
+import { paramSpec } from "../page/controls.js";
+import { drawFigure, onSchemeChange } from "../plots/draw.js";
+import { download } from "../plots/export.js";
 import { showFitOutputs, wireFitOutputs } from "./fitoutputs.js";
 import { dataErrorMessage, explorerParams, measuredOverlay } from "./fitparams.js";
 import { fitFigures, formatNumber, modelCaption } from "./fitplots.js";

@@ -7,13 +7,13 @@
 
 import {
   parseNumber, registerControlWriter, roundSignificant, sliderToValue, valueToSlider,
-} from "./controls.js";
-import { wireSliderKeys } from "./inputs.js";
+} from "../page/controls.js";
+import { wireSliderKeys } from "../page/inputs.js";
 import {
   LOOP_CONTROLS, compParams, loopError, loopSpec,
 } from "./loopstate.js";
-import { refresh, settleNow } from "./render.js";
-import { $, app, commit } from "./store.js";
+import { refresh, settleNow } from "../page/render.js";
+import { $, app, commit } from "../page/store.js";
 
 const STEPS = 1000;
 /** Where each slider goes in the loop's fieldset. */

@@ -5,8 +5,8 @@
 // the mass is the loop's own `m_loop`: the ramp's default m = 1e-4 kg with the loop's
 // default gains makes the linear loop unstable (Kd·Kp = 9e-5 < m·Ki = 3e-4 N²·s/m²).
 
-import { parseNumber, roundSignificant } from "./controls.js";
-import { LOOP_SERIES } from "./loopmodel.js";
+import { parseNumber, roundSignificant } from "../page/controls.js";
+import { LOOP_SERIES } from "../models/loopmodel.js";
 
 /** The loop's sliders, in the order of the form: the table controls.js's sliders use
  *  (scale log, log0 with 0 at the left end, or linear with step). `when`: the state in
@@ -167,7 +167,7 @@ let runs = 0;
 export function localLoop(body) {
   if (worker === false) return Promise.resolve(null);
   if (!worker) {
-    worker = new Worker(new URL("./loopworker.js", import.meta.url), { type: "module" });
+    worker = new Worker(new URL("../models/loopworker.js", import.meta.url), { type: "module" });
     worker.onmessage = ({ data: { id, result } }) => {
       // the series as the server's answer has them: plain arrays
       for (const name of result ? LOOP_SERIES : []) result[name] = Array.from(result[name]);

@@ -5,8 +5,8 @@
 import {
   PARAMS, couple, moveSlider, parseNumber, validate, writeControls,
 } from "./controls.js";
-import { onSchemeChange } from "./draw.js";
-import { exportCsv, exportPng } from "./export.js";
+import { onSchemeChange } from "../plots/draw.js";
+import { exportCsv, exportPng } from "../plots/export.js";
 import { redraw, refresh, settleNow } from "./render.js";
 import { defaultState, fromQuery, presetState } from "./state.js";
 import { $, app, commit } from "./store.js";

@@ -2,7 +2,7 @@
 // figures {data, layout} for the data panel, and the number formats of its tables.
 // Nothing here touches the DOM; datapanel.js hands the figures to Plotly.react.
 
-import { PALETTE } from "./palette.js";
+import { PALETTE } from "../plots/palette.js";
 
 /** Axis title of each column a series can hold. */
 export const AXIS_TITLES = {

@@ -1,7 +1,7 @@
 // A fit job on the server (POST /api/fit/jobs): submit, poll, cancel, fetch results.
 // Requests only, through api.js; the data panel (datapanel.js) owns the state and the view.
 
-import { ApiError, deleteResource, getJSON, getText, postForm } from "./api.js";
+import { ApiError, deleteResource, getJSON, getText, postForm } from "../page/api.js";
 
 const POLL_MS = 200;
 const BUSY_RETRY_MS = 400; // 429: the server's fit workers are all taken

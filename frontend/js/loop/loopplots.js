@@ -5,7 +5,7 @@
 // and the note's (E13) value at that k (◆). Nothing here touches the DOM. Colours:
 // palette.js.
 
-import { PALETTE } from "./palette.js";
+import { PALETTE } from "../plots/palette.js";
 
 /** Axis titles per plot, also the CSV columns of an export. */
 export const LOOP_AXES = {

@@ -2,9 +2,9 @@
 // /api/explore frame by the builders of plots.js.
 
 import { AXES, breakawayFigure, hysteresisFigure, phaseFigure, stribeckFigure } from "./plots.js";
-import { simStale } from "./simulation.js";
-import { app } from "./store.js";
-import { registerView } from "./views.js";
+import { simStale } from "../ramp/simulation.js";
+import { app } from "../page/store.js";
+import { registerView } from "../page/views.js";
 
 registerView({
   id: "stribeck", source: "frame", axes: AXES.stribeck,

@@ -2,7 +2,7 @@
 // slider <-> value maps (logarithmic where a range spans decades), and the checks of
 // MODEL.md §1 that decide whether a state may be sent at all.
 
-import { F_HAT_CHOICES } from "./model.js";
+import { F_HAT_CHOICES } from "../models/model.js";
 
 const STEPS = 1000; // slider positions of a log or linear control
 

@@ -1,7 +1,7 @@
 // Teaching tools as pure functions: pinned reference curves, parameter sweeps and the
 // guided tour through the note's figures. lessons.js owns the state and the requests.
 
-import { SWEEP } from "./palette.js";
+import { SWEEP } from "../plots/palette.js";
 
 /** Faded copies of a figure's traces, to keep as a reference while the sliders move. */
 export function pinnedTraces(figure) {

@@ -4,10 +4,10 @@
 // numbers, and Play, which moves a time cursor through both plots.
 
 import { explainBreakaway, rampBody, rampFigure, simulationPhaseTrace } from "./ramp.js";
-import { rampExperiment } from "./rampmodel.js";
-import { $, app } from "./store.js";
-import { drawView, viewResult } from "./viewrequests.js";
-import { registerOverlay, registerView } from "./views.js";
+import { rampExperiment } from "../models/rampmodel.js";
+import { $, app } from "../page/store.js";
+import { drawView, viewResult } from "../page/viewrequests.js";
+import { registerOverlay, registerView } from "../page/views.js";
 
 const RAMP_DEBOUNCE_MS = 60;
 const PLAY_SECONDS = 4;

@@ -2,17 +2,17 @@
 // guided tour. Their state lives in `app`; the traces come from teach.js's pure
 // functions, laid over the model plots as overlays of the view registry.
 
-import { postJSON } from "./api.js";
-import { paramSpec } from "./controls.js";
-import { PLOT_IDS, figures } from "./plots.js";
-import { showPlotInView } from "./phone.js";
-import { redraw } from "./render.js";
-import { exploreBody, partDefaults } from "./state.js";
-import { $, app, whenIdle } from "./store.js";
+import { postJSON } from "../page/api.js";
+import { paramSpec } from "../page/controls.js";
+import { PLOT_IDS, figures } from "../plots/plots.js";
+import { showPlotInView } from "../page/phone.js";
+import { redraw } from "../page/render.js";
+import { exploreBody, partDefaults } from "../page/state.js";
+import { $, app, whenIdle } from "../page/store.js";
 import {
   TOUR, pinnedTraces, sweepTraces, sweepValues, sweptPlots, tourState, withTraces,
 } from "./teach.js";
-import { registerOverlay } from "./views.js";
+import { registerOverlay } from "../page/views.js";
 
 /** What each plot calls itself in a sentence. */
 const PLOT_NAMES = {

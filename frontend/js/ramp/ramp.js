@@ -2,7 +2,7 @@
 // ramp figure, the simulated path over the phase family, and the sentence that explains
 // the break-away numbers. Nothing here touches the DOM.
 
-import { PALETTE } from "./palette.js";
+import { PALETTE } from "../plots/palette.js";
 
 const COLORS = PALETTE.ramp;
 

@@ -1,6 +1,6 @@
 // Export what a plot shows: its traces as CSV (one row per plotted point), or a PNG.
 
-import { viewOf } from "./views.js";
+import { viewOf } from "../page/views.js";
 
 function csvField(text) {
   const s = String(text);
