@@ -10,6 +10,7 @@ import numpy as np
 
 from .curve import PARAMETERS, SYMBOLS, symbol
 from .honesty import OTHER_FAMILIES, open_values, why_open
+from .sensitivity import rate_band
 
 
 def _clean(value):
@@ -118,6 +119,8 @@ def describe(outcome, knowledge, would) -> dict:
                                   outcome.draws.middle, setting),
                   "draws": outcome.draws.count,
                   "criterion": {"before": outcome.before, "after": outcome.after}}
+        if family.name == "ramps":
+            design["band"] = _band(outcome, knowledge)
         if not np.any(outcome.information.usable):
             notes.append(f"No {family.name} run within the limits yields a measurement at "
                          "any of the values the plan is made for.")
@@ -133,6 +136,14 @@ def describe(outcome, knowledge, would) -> dict:
         "noise": setting.noise,
         "units": {key: knowledge.units[key] for key in sorted(knowledge.units)},
     }
+
+
+def _band(outcome, knowledge) -> dict | None:
+    """Where F_ba(k) is most sensitive to V and δ at the middle draw (a teaching figure of
+    the plan: the rates it chooses cluster there)."""
+    p = outcome.draws.at(outcome.draws.middle)
+    return rate_band(p["Fc"], p["Fs"], p["V"], p["delta"], p["s"], p["sigma"],
+                     knowledge.F_hat, knowledge.z_ba)
 
 
 def _left_open(outcome, knowledge, would) -> list[str]:
