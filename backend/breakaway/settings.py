@@ -28,6 +28,10 @@ class Settings(BaseSettings):
     #: Caps on grid sizes and rate lists in requests.
     max_grid_points: int = 5000
     max_rates: int = 64
+    #: Caps of a plan of the next experiment (POST /api/plan): runs, and candidate
+    #: design points (rates, speeds, the sine's amplitudes times frequencies).
+    max_plan_runs: int = 64
+    max_plan_grid: int = 400
     #: Significant digits of /api/explore floats when they cannot go as float32 (see
     #: api/encoding.py; 7 digits keep the relative error below 5e-7).
     payload_digits: int = 7

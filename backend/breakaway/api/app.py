@@ -21,8 +21,8 @@ from .fitworkers import FitWorkers
 from .guide import mount_guide
 from .jobstore import JobStore
 from .middleware import BodySizeLimit, CatchAll, CompressPages, SameOrigin, SecurityHeaders
-from .routers import (assets, explore, export, fit, health, loop, presets, ramp, samples,
-                      simulate)
+from .routers import (assets, explore, export, fit, health, loop, plan, presets, ramp,
+                      samples, simulate)
 from .simulation import SimulationRunner
 
 #: The API, one router per resource.
@@ -35,6 +35,7 @@ ROUTERS: list[APIRouter] = [
     loop.router,
     fit.router,
     export.router,
+    plan.router,
     samples.router,
     assets.router,
 ]

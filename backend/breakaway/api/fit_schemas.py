@@ -15,6 +15,15 @@ class ModelFit(BaseModel):
     bic: float | None
 
 
+class Covariance(BaseModel):
+    names: list[str]
+    matrix: list[list[float]]
+
+
+class FinalFit(ModelFit):
+    covariance: Covariance | None = None
+
+
 class FitStep(ModelFit):
     effect: str
     evidence: str
@@ -56,7 +65,7 @@ class FitReport(BaseModel):
     base: ModelFit
     steps: list[FitStep]
     effects: list[str]
-    final: ModelFit
+    final: FinalFit
     error_before: float | None
     error_after: float | None
     heldout: HeldOut

@@ -51,6 +51,11 @@ class Assessment:
     determined: dict
     why: dict
     bound: dict  # name -> "lower" / "upper" for parameters on a bound
+    #: the fitted parameters' correlation matrix, rows and columns in ``names`` order
+    #: (NaN where a parameter has no variance); what a plan of the next experiment
+    #: adds its information to
+    names: tuple = ()
+    correlation: np.ndarray | None = None
 
 
 #: The residual's correlation time is summed until its autocorrelation falls below this.
@@ -195,7 +200,7 @@ def assess(problem, theta, jac, cost, n, active_mask=None, residual=None,
         stderr[name] = se
         determined[name] = reason is None
         why[name] = reason
-    return Assessment(stderr, determined, why, bound)
+    return Assessment(stderr, determined, why, bound, tuple(names), corr)
 
 
 __all__ = ["Assessment", "MAX_CORRELATION", "MAX_RELATIVE_ERROR", "assess", "block_covariance",

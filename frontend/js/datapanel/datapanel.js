@@ -19,6 +19,7 @@ import { download } from "../plots/export.js";
 import { showFitOutputs, wireFitOutputs } from "./fitoutputs.js";
 import { dataErrorMessage, explorerParams, measuredOverlay } from "./fitparams.js";
 import { fitFigures, formatNumber, modelCaption } from "./fitplots.js";
+import { clearPlan, drawPlanFigure, showPlan, wirePlan } from "./plan.js";
 import {
   element, plotCard, renderErrorTable, renderParamTable, renderSteps, renderSummary,
 } from "./fitview.js";
@@ -201,6 +202,7 @@ function clearResults() {
   panel.figures = null;
   $("fit-effect-plots").replaceChildren();
   $("use-note").textContent = "";
+  clearPlan();
 }
 
 async function showResults(job) {
@@ -210,6 +212,7 @@ async function showResults(job) {
   renderErrorTable(report);
   renderParamTable(report);
   renderSteps(report);
+  showPlan(report);
   const figures = fitFigures(job);
   $("fit-model-caption").textContent = modelCaption(report.kind);
   if (quizPending()) {
@@ -232,6 +235,7 @@ function drawFitFigures() {
   const figures = panel.figures;
   if (!figures || $("fit-results").hidden) return Promise.resolve();
   return Promise.all([
+    drawPlanFigure(),
     drawFigure($("fit-plot-model"), figures.model),
     drawFigure($("fit-plot-residual"), figures.residual),
     ...figures.effects.map(({ effect, figure }) => drawFigure($(`fit-plot-effect-${effect}`), figure)),
@@ -348,6 +352,7 @@ export function initDataPanel({ applyParams, tryInLoop, explorerS }) {
   panel.applyParams = applyParams;
   panel.explorerS = explorerS;
   wireFitOutputs({ fit: () => panel.result, showError, hideError, tryInLoop });
+  wirePlan();
   $("data-file").addEventListener("change", (event) => chooseFile(event.target.files[0]));
   $("data-sample").addEventListener("change", chooseSample);
   $("fit-start").addEventListener("click", startFit);

@@ -93,14 +93,14 @@ export function selfConsistentVelocity(c, p) {
 }
 
 /** ẋ = c/F̂ with c = k/(s·|ln z|) (E12), F̂ one of Fc, Fs, avg, self. */
-function e12Velocity(c, p, fHat) {
+export function e12Velocity(c, p, fHat) {
   if (fHat === "self") return c > 0 ? selfConsistentVelocity(c, p) : 0;
   const level = { Fc: p.Fc, Fs: p.Fs, avg: p.Fc + (p.Fs - p.Fc) / 2 }[fHat];
   return c / level;
 }
 
 /** c = k/(s·(−ln z)) of (E12), 0 at z = 0. */
-function e12Work(z, k, s) {
+export function e12Work(z, k, s) {
   return z > 0 ? k / (s * -Math.log(z)) : 0.0;
 }
 

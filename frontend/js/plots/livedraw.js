@@ -212,7 +212,19 @@ function drawTrace(ctx, trace, axes, font) {
   const xs = trace.x ?? [];
   const ys = trace.y ?? [];
   ctx.globalAlpha = trace.opacity ?? 1;
-  if (mode.includes("lines")) {
+  if (trace.fill === "toself" && trace.fillcolor) {
+    // a shaded region (the break-away plot's band of rates), as Plotly fills it
+    ctx.beginPath();
+    for (let i = 0; i < xs.length; i += 1) {
+      const px = xAxis.map(xs[i], true);
+      const py = yAxis.map(ys[i], true);
+      if (i === 0) ctx.moveTo(px, py); else ctx.lineTo(px, py);
+    }
+    ctx.closePath();
+    ctx.fillStyle = trace.fillcolor;
+    ctx.fill();
+  }
+  if (mode.includes("lines") && (trace.line?.width ?? 2) > 0) {
     const line = trace.line ?? {};
     const width = line.width ?? 2;
     const dash = DASHES[line.dash];

@@ -32,6 +32,8 @@ export const PALETTE = {
   // the data panel's plots
   fitModel: { measured: "#8a9099", base: "#d62728", final: "#1f4e99" },
   fitResidual: { before: "#c9ccd1", after: "#1f4e99" },
+  // the plan's standard errors: now (grey), after the plan (blue), the bar of 100 %
+  plan: { now: "#8a9099", after: "#1f4e99", bar: "#111111" },
 };
 
 /** Black and dark grey ink (the simulation, reference lines) turned light on a dark

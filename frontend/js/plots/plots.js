@@ -176,12 +176,19 @@ export function interpolate(xs, ys, x) {
   return ys[lo] + t * (ys[hi] - ys[lo]);
 }
 
+/** The band's shading: Okabe–Ito blue, faint enough that the curves read through it. */
+export const BAND_FILL = "rgba(0, 114, 178, 0.13)";
+/** The name of the shaded band of rates (models/sensitivity.js). */
+export const BAND_NAME = "most sensitive to V, δ";
+
 /**
  * Fig. 5: F_ba(k) for the four F̂ (the chosen one drawn heavier), the current k, and
  * the simulated break-away points of the ramp (E7) and of LuGre when present.
- * `sim` / `lugre`: {k, u_ba, F_ba, stale} or null.
+ * `sim` / `lugre`: {k, u_ba, F_ba, stale} or null. `band`: {k: [low, high]} the rates
+ * where F_ba(k) is most sensitive to V and δ (rateBand), shaded where it meets the
+ * plotted rates.
  */
-export function breakawayFigure(frame, state, sim = null, lugre = null) {
+export function breakawayFigure(frame, state, sim = null, lugre = null, band = null) {
   const ba = frame.breakaway;
   const data = ["Fc", "Fs", "avg", "self"].map((name) => ({
     type: "scatter", mode: "lines", name: F_HAT_LABEL[name],
@@ -226,6 +233,17 @@ export function breakawayFigure(frame, state, sim = null, lugre = null) {
     x: [k, k], y: [lo, hi], hoverinfo: "skip",
     line: { color: COLORS.current, width: 1, dash: "dash" },
   });
+  const [kLo, kHi] = [ba.k[0], ba.k[ba.k.length - 1]];
+  if (band && band.k[1] > kLo && band.k[0] < kHi) {
+    const left = Math.max(band.k[0], kLo);
+    const right = Math.min(band.k[1], kHi);
+    // a closed polygon under the curves' extent: the autorange stays the curves'
+    data.push({
+      type: "scatter", mode: "lines", name: BAND_NAME, fill: "toself", fillcolor: BAND_FILL,
+      x: [left, right, right, left, left], y: [lo, lo, hi, hi, lo],
+      line: { width: 0 }, hoverinfo: "skip",
+    });
+  }
   const layout = baseLayout("breakaway", {
     legend: { orientation: "h", x: 0, y: -0.2, yanchor: "top" },
     margin: { l: 58, r: 12, t: 8, b: 80 },
@@ -234,12 +252,12 @@ export function breakawayFigure(frame, state, sim = null, lugre = null) {
 }
 
 /** The figures of one redraw (all four, or those in `ids`), keyed by plot id. */
-export function figures(frame, state, sim, lugre, ids = PLOT_IDS) {
+export function figures(frame, state, sim, lugre, ids = PLOT_IDS, band = null) {
   const build = {
     stribeck: () => stribeckFigure(frame),
     hysteresis: () => hysteresisFigure(frame, state),
     phase: () => phaseFigure(frame, state),
-    breakaway: () => breakawayFigure(frame, state, sim, lugre),
+    breakaway: () => breakawayFigure(frame, state, sim, lugre, band),
   };
   return Object.fromEntries(ids.map((id) => [id, build[id]()]));
 }
