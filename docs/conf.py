@@ -41,7 +41,6 @@ autodoc_typehints = "none"  # the numpydoc sections give types, with units
 
 html_theme = "pydata_sphinx_theme"
 html_title = "Breakaway"
-html_static_path = ["_static"]
 html_show_sourcelink = False
 html_theme_options = {
     # served by `breakaway serve` under /guide/: the explorer is the site's root
