@@ -69,7 +69,7 @@ def join(first: Dataset, second: Dataset) -> Dataset:
             float(np.median(np.diff(first.columns["t"])))
         columns["t"] = np.concatenate([first.columns["t"], second.columns["t"] + shift])
         segments = (*first.segments, first.n, *(first.n + i for i in second.segments))
-    if first.kind == "breakaway" and first.meta.get("s") != second.meta.get("s"):
+    if first.kind == "breakaway" and first.meta_float("s", 1.0) != second.meta_float("s", 1.0):
         raise ValueError("the two break-away records were read with different s")
     return _dataset(first.kind, columns, first.meta, segments)
 
