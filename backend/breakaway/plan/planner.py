@@ -146,7 +146,7 @@ def _outcome(knowledge: Knowledge, family, limits, runs, noise, targets, grid,
     ranges = {name: knowledge.ranges[name] for name in names if name in knowledge.ranges}
     loose = {name: knowledge.values[name] for name in ranges
              if knowledge.stderr.get(name) is not None}
-    draws = make_draws({n: knowledge.values[n] for n in PARAMETERS}, ranges, loose)
+    draws = make_draws({n: knowledge.values[n] for n in PARAMETERS}, ranges, loose, coarse=quick)
     cands = family.candidates(draws.P, setting, draws.middle)
     empty.draws, empty.candidates = draws, cands
     if cands.size == 0:
