@@ -161,6 +161,9 @@ def _outcome(knowledge: Knowledge, family, limits, runs, noise, targets, grid,
         runs = DEFAULT_RUNS[family.name] if runs is None else runs
         counts = choose_runs(now, info.rows, runs, index)
     else:
+        if runs not in (None, 1):
+            notes.append(f"The {family.name} is one record of {setting.limits.duration:g} s: "
+                         f"runs = {runs} does not apply.")
         counts = choose_one(now, info.matrix, index)
     after = now + np.einsum("g,qgij->qij", counts, info.matrix)
     stderr, determined = verdicts(covariance(after), names, draws.P)

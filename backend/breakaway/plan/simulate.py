@@ -10,11 +10,14 @@ the plan predicted.
 from __future__ import annotations
 
 import numpy as np
+from scipy.optimize import least_squares
 
 from ..identify.csvdata import Dataset
+from ..identify.models import problem_for
 from ..presliding import presliding_force
 from ..quasistatic import breakaway_force
 from ..steady import steady_state_force
+from .fisher import verdicts
 
 
 def _dataset(kind: str, columns: dict, meta: dict | None = None, segments=()) -> Dataset:
@@ -98,11 +101,6 @@ def joint_fit(records, start: dict, noise) -> dict:
         ``params``, ``stderr`` and ``determined`` (relative standard error at most one,
         no correlation above 0.99), keyed like a report's.
     """
-    from scipy.optimize import least_squares
-
-    from ..identify.models import problem_for
-    from .fisher import verdicts
-
     problems = [problem_for(record) for record in records]
     names = ["Fc", "Fs", "V", "delta"] + (["s"] if any(r.kind == "timeseries" for r in records)
                                           else [])
