@@ -13,7 +13,8 @@ pytestmark = pytest.mark.browser
 
 #: Parameter sets that take each branch: the defaults, velocity strengthening (δ < 0),
 #: viscous friction, a steep Stribeck fall where ẋ·Fss(ẋ) turns back (the self-consistent
-#: root by bisection), a stage in SI units, and Fs = Fc.
+#: root by bisection), a stage in SI units, Fs = Fc, and a Stribeck step (δ = 1000, where
+#: (v/V)^δ overflows a float).
 CASES = [
     {},
     {"delta": -1.5, "F_hat": "self"},
@@ -22,6 +23,7 @@ CASES = [
     {"Fc": 12.0, "Fs": 15.0, "V": 0.002, "delta": 0.7, "s": 2e5, "sigma": 40.0, "k": 300.0,
      "F_hat": "Fc"},
     {"Fc": 1.5, "Fs": 1.5, "F_hat": "self", "k": 0.03},
+    {"delta": 1000.0, "V": 2.0, "F_hat": "self"},
 ]
 
 #: Both sides evaluate the same formulas in the same order in float64; exp, log and pow

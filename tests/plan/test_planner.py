@@ -132,3 +132,9 @@ def test_bad_requests_are_refused_naming_the_field(kwargs, path):
     with pytest.raises(PlanError) as caught:
         plan_experiment(**kwargs)
     assert caught.value.path == path
+
+
+def test_the_sine_is_one_record_and_says_runs_do_not_apply():
+    plan = plan_experiment("sine", params={"Fc": 1.0, "Fs": 1.5, "V": 10.0}, runs=5)
+    assert plan["design"]["runs"] == 1
+    assert "The sine is one record of 60 s: runs = 5 does not apply." in plan["notes"]

@@ -14,18 +14,14 @@ from .schemas import _STRICT, Delta, FHat, NonNegative, Positive, _field_error
 Parameter = Literal[PARAMETERS]
 
 
-def _cap_runs(value: int) -> int:
-    cap = get_settings().max_plan_runs
-    if value > cap:
-        raise ValueError(f"runs must be <= {cap}, got {value}")
-    return value
-
-
-def _cap_plan_grid(value: int) -> int:
-    cap = get_settings().max_plan_grid
-    if value > cap:
-        raise ValueError(f"grid must be <= {cap}, got {value}")
-    return value
+def _capped(field: str, setting: str):
+    """A validator keeping ``field`` at most the server's setting ``setting``."""
+    def check(value: int) -> int:
+        cap = getattr(get_settings(), setting)
+        if value > cap:
+            raise ValueError(f"{field} must be <= {cap}, got {value}")
+        return value
+    return AfterValidator(check)
 
 
 class PlanParams(BaseModel):
@@ -78,7 +74,7 @@ class PlanRequest(BaseModel):
                     "speed set-points in both directions (E2); sine: one position sine "
                     "through presliding and reversals (E6')")
     limits: PlanLimits | None = Field(None, description="the rig's limits")
-    runs: Annotated[int, Field(ge=1), AfterValidator(_cap_runs)] | None = Field(
+    runs: Annotated[int, Field(ge=1), _capped("runs", "max_plan_runs")] | None = Field(
         None, description="runs of the plan (ramps, set-points; capped); default 12")
     noise: Positive | None = Field(None, description="std of one measured force [N]; "
                                    "default: the record's")
@@ -87,7 +83,7 @@ class PlanRequest(BaseModel):
         description="parameters to determine; default: those the data do not")
     ranges: dict[Parameter, Range] | None = Field(
         None, description="{name: [low, high]}: take a parameter as open over this range")
-    grid: Annotated[int, Field(ge=4), AfterValidator(_cap_plan_grid)] | None = Field(
+    grid: Annotated[int, Field(ge=4), _capped("grid", "max_plan_grid")] | None = Field(
         None, description="candidate design points (capped)")
 
     @model_validator(mode="after")

@@ -50,6 +50,15 @@ def covariance_entry(fit: FitResult) -> dict:
     return {"names": names, "matrix": matrix}
 
 
+def correlated(fit: FitResult) -> dict:
+    """The parameters of ``fit`` not determined only through a correlation, each with
+    what the data do determine (:class:`~.identifiability.Assessment` ``correlated``)."""
+    a = fit.assessment
+    return {name: {"with": c["with"], "r": _clean(c["r"]), "slope": _clean(c["slope"]),
+                   "stderr": _clean(c["stderr"])}
+            for name, c in a.correlated.items() if (a.why.get(name) or "").startswith("correlated:")}
+
+
 def parameter_units(data, names, effects=()) -> dict[str, str]:
     """Units of the parameter keys ``names`` of a model with ``effects``."""
     return {name: data.unit(param_spec(name, effects).unit) for name in names}
@@ -59,7 +68,9 @@ def report(diagnosis: Diagnosis) -> dict:
     """The §8 identification report as a JSON-ready dict.
 
     Besides the §8 keys: each step's held-out error ``heldout``; ``units`` (of the
-    columns and of every parameter, linear or rotary); ``noise_method`` (how the floor
+    columns and of every parameter, linear or rotary); ``correlated`` (of the base and
+    the final model: the parameters not determined only through a correlation, and the
+    combination the data determine, :func:`correlated`); ``noise_method`` (how the floor
     was estimated); ``screened_rows`` (rows of the blocks the candidates were screened
     on, 0 when every row was used) and ``seconds`` (wall time); what an export of the
     model needs beyond ``final.params``: ``t_0`` (timeseries: the first sample's time,
@@ -90,6 +101,7 @@ def report(diagnosis: Diagnosis) -> dict:
                            "heldout": _clean(c.heldout), "accepted": bool(c.accepted),
                            "reason": c.reason}
                        for e, c in d.candidates.items()},
+        "correlated": {"base": correlated(d.base), "final": correlated(d.final)},
         "units": {**units(d.data),
                   **parameter_units(d.data, list(d.base.params) + list(d.final.params),
                                    d.final.effects)},

@@ -77,13 +77,15 @@ def open_levels(pieces, count: int, centre: float | None = None) -> np.ndarray:
     return np.asarray(out, dtype=float)
 
 
-def make_draws(values: dict, ranges: dict, centres: dict | None = None) -> Draws:
+def make_draws(values: dict, ranges: dict, centres: dict | None = None,
+               coarse: bool = False) -> Draws:
     """The draws over the open ``ranges`` (name → list of (low, high) pieces), the other
     parameters at their ``values``; a parameter with a ``centres`` entry (a loosely
-    determined one: its estimate) has that as its middle level."""
+    determined one: its estimate) has that as its middle level. ``coarse``: three
+    levels each (a quick look, as when asking which family would do)."""
     names = [name for name in ranges]
     counts = [LEVELS.get(name, DEFAULT_LEVELS) for name in names]
-    if int(np.prod(counts)) > MAX_DRAWS:
+    if coarse or int(np.prod(counts)) > MAX_DRAWS:
         counts = [DEFAULT_LEVELS] * len(names)
     levels = {name: open_levels(ranges[name], count, (centres or {}).get(name))
               for name, count in zip(names, counts)}

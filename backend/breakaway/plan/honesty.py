@@ -51,7 +51,10 @@ def why_open(outcome, knowledge, name: str) -> list[str]:
                    f"reversals determines s, and with it V")
     draws = outcome.draws
     column = names.index(name)
-    failing = np.flatnonzero(~outcome.determined_after[:, column])
+    # the draws the answer reports on: the target across its range, the others at their
+    # middle (or the middle draw alone)
+    reported = np.asarray(draws.across.get(name) or [draws.middle])
+    failing = reported[~outcome.determined_after[reported, column]]
     if family == "steady" and name in ("V", "delta", "Fs") and failing.size:
         P = draws.P
         # where half of the drop is done: exp(−(v/V)^δ) = 1/2
@@ -75,6 +78,22 @@ def why_open(outcome, knowledge, name: str) -> list[str]:
                        f"at {_fmt(begins[above][0])} {units['v']}, above the largest speed the "
                        f"rig may reach (v_max = {_fmt(limits.v_max)} {units['v']}): only a "
                        "faster rig shows it")
+    if family == "ramps" and name in ("V", "delta") and failing.size \
+            and outcome.information is not None:
+        P = draws.P
+        begins = P["V"][failing, 0] * np.power(math.log(1 / 0.9), 1.0 / P["delta"][failing, 0])
+        # the slowest break-away speed a ramp reaches: the slowest rate that breaks away
+        # within its run (per draw)
+        speeds = np.where(outcome.information.usable, outcome.information.predicted["speed"],
+                          np.inf)[failing].min(axis=1)
+        early = begins < speeds
+        if early.any():
+            worst = failing[early][0]
+            out.append(f"at V = {_fmt(P['V'][worst, 0])} {units['V']} the Stribeck drop begins "
+                       f"at {_fmt(begins[early][0])} {units['v']}, below the slowest break-away "
+                       f"speed a ramp reaches within {_fmt(limits.duration)} s "
+                       f"({_fmt(speeds[early][0])} {units['v']}): slower ramps, in longer runs, "
+                       "would show it")
     if outcome.information is not None and failing.size:
         silent = ~outcome.information.usable[failing].any(axis=1)
         if silent.any():

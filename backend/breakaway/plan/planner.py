@@ -146,7 +146,7 @@ def _outcome(knowledge: Knowledge, family, limits, runs, noise, targets, grid,
     ranges = {name: knowledge.ranges[name] for name in names if name in knowledge.ranges}
     loose = {name: knowledge.values[name] for name in ranges
              if knowledge.stderr.get(name) is not None}
-    draws = make_draws({n: knowledge.values[n] for n in PARAMETERS}, ranges, loose)
+    draws = make_draws({n: knowledge.values[n] for n in PARAMETERS}, ranges, loose, coarse=quick)
     cands = family.candidates(draws.P, setting, draws.middle)
     empty.draws, empty.candidates = draws, cands
     if cands.size == 0:
@@ -161,6 +161,9 @@ def _outcome(knowledge: Knowledge, family, limits, runs, noise, targets, grid,
         runs = DEFAULT_RUNS[family.name] if runs is None else runs
         counts = choose_runs(now, info.rows, runs, index)
     else:
+        if runs not in (None, 1):
+            notes.append(f"The {family.name} is one record of {setting.limits.duration:g} s: "
+                         f"runs = {runs} does not apply.")
         counts = choose_one(now, info.matrix, index)
     after = now + np.einsum("g,qgij->qij", counts, info.matrix)
     stderr, determined = verdicts(covariance(after), names, draws.P)

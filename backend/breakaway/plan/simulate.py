@@ -10,11 +10,14 @@ the plan predicted.
 from __future__ import annotations
 
 import numpy as np
+from scipy.optimize import least_squares
 
 from ..identify.csvdata import Dataset
+from ..identify.models import problem_for
 from ..presliding import presliding_force
 from ..quasistatic import breakaway_force
 from ..steady import steady_state_force
+from .fisher import verdicts
 
 
 def _dataset(kind: str, columns: dict, meta: dict | None = None, segments=()) -> Dataset:
@@ -69,7 +72,7 @@ def join(first: Dataset, second: Dataset) -> Dataset:
             float(np.median(np.diff(first.columns["t"])))
         columns["t"] = np.concatenate([first.columns["t"], second.columns["t"] + shift])
         segments = (*first.segments, first.n, *(first.n + i for i in second.segments))
-    if first.kind == "breakaway" and first.meta.get("s") != second.meta.get("s"):
+    if first.kind == "breakaway" and first.meta_float("s", 1.0) != second.meta_float("s", 1.0):
         raise ValueError("the two break-away records were read with different s")
     return _dataset(first.kind, columns, first.meta, segments)
 
@@ -98,11 +101,6 @@ def joint_fit(records, start: dict, noise) -> dict:
         ``params``, ``stderr`` and ``determined`` (relative standard error at most one,
         no correlation above 0.99), keyed like a report's.
     """
-    from scipy.optimize import least_squares
-
-    from ..identify.models import problem_for
-    from .fisher import verdicts
-
     problems = [problem_for(record) for record in records]
     names = ["Fc", "Fs", "V", "delta"] + (["s"] if any(r.kind == "timeseries" for r in records)
                                           else [])

@@ -24,8 +24,8 @@ from .programme import empty_csv, sine_csv
 
 #: Points of each branch's presliding arc (geometric in the distance from the reversal)
 #: and over the whole branch (uniform in phase).
-ARC_POINTS = 64
-REST_POINTS = 128
+ARC_POINTS = 48
+REST_POINTS = 96
 #: The arc runs out to this many presliding distances from the reversal ...
 ARC_REACH = 1.5
 #: ... from this share of the shortest presliding distance of the draws.

@@ -12,25 +12,26 @@ def _number(value, unit: str = "") -> str:
     return f"{value:.3g} {unit}".rstrip()
 
 
+def _listed(values) -> str:
+    """Values in order, a repeated one once with its count: ``0.1 (×3), 2``."""
+    counted = {}
+    for value in values:
+        counted[value] = counted.get(value, 0) + 1
+    return ", ".join(f"{v:.3g}" + (f" (×{n})" if n > 1 else "") for v, n in counted.items())
+
+
 def _design_lines(design: dict, units: dict) -> list[str]:
     family = design["family"]
     if family == "ramps":
         rates = design["rates"]
-        counted = {}
-        for k in rates:
-            counted[k] = counted.get(k, 0) + 1
-        listed = ", ".join(f"{k:.3g}" + (f" (×{n})" if n > 1 else "") for k, n in counted.items())
-        return [f"  {len(rates)} force ramps from rest at k [{units['k']}]: {listed}",
+        return [f"  {len(rates)} force ramps from rest at k [{units['k']}]: {_listed(rates)}",
                 f"  break-away speeds {min(design['breakaway_speed']):.3g} to "
                 f"{max(design['breakaway_speed']):.3g} {units['v']}; each ramp stops at "
                 f"{max(design['end_force']):.4g} {units['F']} at most"]
     if family == "steady":
         speeds = design["speeds"]
-        counted = {}
-        for v in speeds:
-            counted[v] = counted.get(v, 0) + 1
-        listed = ", ".join(f"{v:.3g}" + (f" (×{n})" if n > 1 else "") for v, n in counted.items())
-        return [f"  {len(speeds)} set-points, each at +v and -v, v [{units['v']}]: {listed}"]
+        return [f"  {len(speeds)} set-points, each at +v and -v, v [{units['v']}]: "
+                f"{_listed(speeds)}"]
     return [f"  one position sine: A = {design['amplitude']:.3g} {units['x']}, "
             f"f = {design['frequency']:.3g} Hz, {design['duration']:.3g} s "
             f"({design['periods']:.3g} periods) at {design['sample_rate']:.3g} Hz; peak speed "
@@ -50,17 +51,17 @@ def format_plan(plan: dict, programme_path: str | None = None) -> str:
     else:
         lines.append("design: no runs")
     lines += ["", "predicted standard errors:",
-              f"  {'':8}{'now':>14}{'after':>14}   determined"]
+              f"  {'':8}{'now':>18}{'after':>18}   determined"]
     for name, entry in plan["predicted"].items():
         unit = units.get(name, "")
         yes = {True: "yes", False: "no"}
-        lines.append(f"  {symbol(name):8}{_number(entry['stderr_now'], unit):>14}"
-                     f"{_number(entry['stderr_after'], unit):>14}   "
+        lines.append(f"  {symbol(name):8}{_number(entry['stderr_now'], unit):>18}"
+                     f"{_number(entry['stderr_after'], unit):>18}   "
                      f"{yes[entry['determined_now']]} -> {yes[entry['determined_after']]}"
                      + ("  (target)" if entry["target"] else ""))
         for point in entry.get("across") or []:
-            lines.append(f"  {'':8}{'at ' + _number(point['value'], unit):>14}"
-                         f"{_number(point['stderr_after'], unit):>14}   "
+            lines.append(f"  {'':8}{'at ' + _number(point['value'], unit):>18}"
+                         f"{_number(point['stderr_after'], unit):>18}   "
                          f"{yes[point['determined_after']]}")
     if plan["notes"]:
         lines += ["", "notes:"] + [f"  - {note}" for note in plan["notes"]]

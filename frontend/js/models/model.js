@@ -1,6 +1,6 @@
 // The model's curves computed in the page, for the frames drawn while a hand moves a
 // slider: the same frame as POST /api/explore (backend/breakaway/frame.py), from the
-// same formulas, step by step as the Python model does them (MODEL.md §2–§4):
+// same formulas, step by step as the Python model does them (the note's E2–E13):
 //   Stribeck curve (E2), the presliding loop (E4, E6'), the phase family (E12) and the
 //   break-away curves (E13) for every F̂, the self-consistent one by the same root
 //   search. tests/browser/test_browser_model_js.py holds it to the Python functions
@@ -41,12 +41,17 @@ export function steadyForce(v, p) {
   return Math.sign(v) * stribeckMagnitude(v, p) + p.sigma * v;
 }
 
-/** h(v) = v·Fss(v) and h'(v) for v > 0 (quasistatic._work_and_slope). */
+/** ln y beyond which y = (v/V)^δ is not formed (quasistatic._LOG_Y_MAX). */
+const LOG_Y_MAX = 700.0;
+
+/** h(v) = v·Fss(v) and h'(v) for v > 0 (quasistatic._work_and_slope): y·e^(−y) as
+ *  exp(ln y − y), which a large |δ| does not turn into 0·Infinity. */
 function workAndSlope(v, p) {
-  const y = (v / p.V) ** p.delta;
+  const logY = p.delta * (Math.log(v) - Math.log(p.V));
+  const y = Math.exp(Math.min(logY, LOG_Y_MAX));
   const decay = (p.Fs - p.Fc) * Math.exp(-y);
   const g = p.Fc + decay;
-  return [v * g + p.sigma * v * v, g - decay * p.delta * y + 2 * p.sigma * v];
+  return [v * g + p.sigma * v * v, g - (p.Fs - p.Fc) * p.delta * Math.exp(logY - y) + 2 * p.sigma * v];
 }
 
 function workIsIncreasing(p) {
@@ -93,14 +98,14 @@ export function selfConsistentVelocity(c, p) {
 }
 
 /** ẋ = c/F̂ with c = k/(s·|ln z|) (E12), F̂ one of Fc, Fs, avg, self. */
-export function e12Velocity(c, p, fHat) {
+function e12Velocity(c, p, fHat) {
   if (fHat === "self") return c > 0 ? selfConsistentVelocity(c, p) : 0;
   const level = { Fc: p.Fc, Fs: p.Fs, avg: p.Fc + (p.Fs - p.Fc) / 2 }[fHat];
   return c / level;
 }
 
 /** c = k/(s·(−ln z)) of (E12), 0 at z = 0. */
-export function e12Work(z, k, s) {
+function e12Work(z, k, s) {
   return z > 0 ? k / (s * -Math.log(z)) : 0.0;
 }
 
@@ -127,7 +132,7 @@ function gradient(f, t) {
   return out;
 }
 
-/** d_i of MODEL.md §3: the sign of the last non-zero step (presliding.motion_direction). */
+/** d_i of (E5): the sign of the last non-zero step (presliding.motion_direction). */
 function motionDirection(x) {
   const n = x.length;
   const d = new Array(n);
@@ -183,10 +188,16 @@ export function hysteresisLoop(p, amplitude = GRID.loopAmplitude, n = GRID.loop)
   return { x, F };
 }
 
+/** The quasi-static break-away velocity ẋ(z*) of (E12) [m/s] with F̂ = `fHat`
+ *  (quasistatic.breakaway_velocity). */
+export function breakawayVelocity(k, p, fHat = p.F_hat) {
+  return e12Velocity(e12Work(p.z_ba, k, p.s), p, fHat);
+}
+
 /** The quasi-static break-away force F_ba(k) = Fss(ẋ(z*)) of (E13) [N] with F̂ = `fHat`
  *  (quasistatic.breakaway_force). */
 export function breakawayForce(k, p, fHat = p.F_hat) {
-  return steadyForce(e12Velocity(e12Work(p.z_ba, k, p.s), p, fHat), p);
+  return steadyForce(breakawayVelocity(k, p, fHat), p);
 }
 
 /**

@@ -6,7 +6,7 @@
 // half its largest value: the same rule as the planner's (plan/sensitivity.py), which
 // tests/browser/test_browser_planner.py holds it to.
 
-import { breakawayForce, e12Velocity, e12Work } from "./model.js";
+import { breakawayForce, breakawayVelocity } from "./model.js";
 
 /** The sensitivity at the band's edges, as a share of its largest value. */
 export const BAND_LEVEL = 0.5;
@@ -42,7 +42,7 @@ export function rateBand(p, fHat = p.F_hat) {
   while (low > 0 && strength[low - 1] >= bar) low -= 1;
   let high = peak;
   while (high < POINTS - 1 && strength[high + 1] >= bar) high += 1;
-  const speed = (k) => e12Velocity(e12Work(p.z_ba, k, p.s), p, fHat);
+  const speed = (k) => breakawayVelocity(k, p, fHat);
   return { k: [rates[low], rates[high]], speed: [speed(rates[low]), speed(rates[high])], peak: rates[peak] };
 }
 

@@ -59,5 +59,53 @@ export function drawFigure(element, figure, { config = {}, shown = false } = {})
   const first = !element._context;
   return window.Plotly.react(element, data, forPlotly(layout),
     first ? { ...PLOT_CONFIG, ...config } : undefined)
-    .then(() => untab(element));
+    .then(() => {
+      untab(element);
+      if (first) fitToBox(element);
+    });
+}
+
+/* Plotly sizes a graph to its box once, at its first drawing, and again only when the
+   window is resized. The page's layout switches change a box without that: presentation
+   mode (larger plots, another grid), a phone's strip, a fit's results shown. Every box
+   is watched, and a graph whose box is not the size Plotly laid it out at is laid out
+   anew, in the next animation frame (one relayout per graph however many changes came). */
+const resized = new Set();
+const afterResize = [];
+let resizeFrame = null;
+
+/** Whether graph `gd`'s box differs from the size Plotly last laid it out at. */
+function outOfSize(gd, width, height) {
+  const full = gd._fullLayout;
+  // a box with no size is hidden (display: none): laid out once it shows
+  return Boolean(full && width && height)
+    && (Math.abs(full.width - width) > 1 || Math.abs(full.height - height) > 1);
+}
+
+const watcher = typeof ResizeObserver === "undefined" ? null : new ResizeObserver((entries) => {
+  for (const { target, contentRect } of entries) {
+    if (outOfSize(target, contentRect.width, contentRect.height)) resized.add(target);
+  }
+  if (resized.size && !resizeFrame) resizeFrame = requestAnimationFrame(relayoutResized);
+});
+
+function relayoutResized() {
+  resizeFrame = null;
+  const graphs = [...resized];
+  resized.clear();
+  for (const gd of graphs) {
+    if (!gd.isConnected || !outOfSize(gd, gd.clientWidth, gd.clientHeight)) continue;
+    window.Plotly.relayout(gd, { autosize: true }).then(() => {
+      for (const fn of afterResize) fn(gd);
+    });
+  }
+}
+
+function fitToBox(element) {
+  watcher?.observe(element);
+}
+
+/** Call `fn(graph)` once a graph has been laid out at its box's new size. */
+export function onResized(fn) {
+  afterResize.push(fn);
 }

@@ -5,7 +5,7 @@
 //           the figure already; the canvas is then put away.
 // A graph shows the settled drawing except between a live frame and the next settle.
 
-import { drawFigure } from "./draw.js";
+import { drawFigure, onResized } from "./draw.js";
 import { clearLive, drawLive, isLive } from "./livedraw.js";
 
 const drawn = {}; // plot id -> {data, layoutKey} the graph was last drawn with by Plotly
@@ -101,3 +101,11 @@ export function live(id, figure) {
   }
   return done;
 }
+
+// a graph laid out at a new size while it shows a live frame: the frame drawn again at it
+onResized((gd) => {
+  const id = gd.id.replace(/^plot-/, "");
+  if (!isLive(gd) || drawnLive[id]?.gd !== gd) return;
+  clearLive(gd);
+  drawLive(gd, drawnLive[id].figure);
+});
