@@ -10,26 +10,49 @@
 import { autorange, ticks } from "./axes.js";
 import { AXIS_KEY } from "./draw.js";
 
+/** The axis attributes a live drawing reads (the figure's over Plotly's full axis, which
+ *  holds hundreds: copying it whole cost a frame a millisecond under a phone's CPU). */
+const AXIS_STYLE = ["exponentformat", "gridcolor", "gridwidth", "overlaying", "showgrid", "side",
+  "tickfont", "tickmode", "zeroline", "zerolinecolor", "zerolinewidth"];
+
+function axisStyle(full, own) {
+  const style = {};
+  for (const name of AXIS_STYLE) style[name] = own[name] ?? full[name];
+  return style;
+}
+
 /** Plotly's layers that the canvas stands in for, in the graph's first SVG. */
 const COVERED = [".bglayer", ".layer-below", ".cartesianlayer"];
 const DASHES = { dash: 3, dot: 1, longdash: 5 };
 
+/** Graph -> its Plotly container, first SVG, live canvas and that canvas's context,
+ *  found once (each frame asked the DOM five times a plot), found again when Plotly has
+ *  replaced them. */
+const found = new WeakMap();
+
 function layers(gd) {
+  const known = found.get(gd);
+  if (known?.main.isConnected && known.main.parentNode === known.container && gd.contains(known.container)) {
+    return known;
+  }
   const container = gd.querySelector(".svg-container");
   const main = container?.querySelector("svg.main-svg");
-  return { container, main };
+  const entry = { container, main, canvas: container?.querySelector("canvas.live-layer") ?? null, ctx: null };
+  if (main) found.set(gd, entry);
+  return entry;
 }
 
 function canvasOf(gd) {
-  const { container, main } = layers(gd);
-  let canvas = container.querySelector("canvas.live-layer");
-  if (!canvas) {
-    canvas = document.createElement("canvas");
-    canvas.className = "live-layer";
-    canvas.setAttribute("aria-hidden", "true");
-    main.after(canvas);
+  const entry = layers(gd);
+  if (!entry.canvas || entry.canvas.parentNode !== entry.container) {
+    entry.canvas = document.createElement("canvas");
+    entry.canvas.className = "live-layer";
+    entry.canvas.setAttribute("aria-hidden", "true");
+    entry.main.after(entry.canvas);
+    entry.ctx = null;
   }
-  return canvas;
+  entry.ctx ??= entry.canvas.getContext("2d");
+  return entry;
 }
 
 function cover(gd, hidden) {
@@ -49,7 +72,7 @@ export function isLive(gd) {
 export function clearLive(gd) {
   if (!isLive(gd)) return;
   gd.dataset.live = "false";
-  const canvas = layers(gd).container?.querySelector("canvas.live-layer");
+  const { canvas } = layers(gd);
   if (canvas) canvas.style.display = "none";
   cover(gd, false);
 }
@@ -84,7 +107,7 @@ function axesOf(gd, figure, traces) {
         return line ? toPixel(0.5 * (r0 + r1 - 20 * Math.abs(r0 - r1))) : NaN;
       } : toPixel,
       length,
-      style: { ...full[key], ...figure.layout[key] },
+      style: axisStyle(full[key], figure.layout[key]),
     };
   }
   // an axis laid over another takes its ticks where the other's are (tickmode "sync")
@@ -101,8 +124,14 @@ function axesOf(gd, figure, traces) {
   return out;
 }
 
+/** The canvas's font, set only when it changes: each assignment parses the font anew
+ *  (a tick label asks two or three times). */
 function setFont(ctx, size, family) {
-  ctx.font = `${size}px ${family}`;
+  const font = `${size}px ${family}`;
+  if (ctx.lastFont !== font) {
+    ctx.font = font;
+    ctx.lastFont = font;
+  }
 }
 
 /** A tick label, with Plotly's <sup> powers drawn raised at 70 %. */
@@ -299,7 +328,7 @@ export function drawLive(gd, figure) {
   const axes = axesOf(gd, figure, traces);
   if (!axes.x || !axes.y) return false;
   const size = full._size;
-  const canvas = canvasOf(gd);
+  const { canvas, ctx } = canvasOf(gd);
   const ratio = window.devicePixelRatio || 1;
   const width = full.width;
   const height = full.height;
@@ -308,27 +337,31 @@ export function drawLive(gd, figure) {
     canvas.height = Math.round(height * ratio);
     canvas.style.width = `${width}px`;
     canvas.style.height = `${height}px`;
+    ctx.lastFont = null; // a resized canvas forgets its font
   }
-  const ctx = canvas.getContext("2d");
   ctx.setTransform(ratio, 0, 0, ratio, 0, 0);
   ctx.clearRect(0, 0, width, height);
   const font = { ...full.font, ...(figure.layout.font ?? {}) };
   ctx.fillStyle = figure.layout.plot_bgcolor ?? full.plot_bgcolor ?? "#fff";
   ctx.fillRect(size.l, size.t, size.w, size.h);
   drawGrid(ctx, axes, size);
+  const fontBefore = ctx.lastFont;
   ctx.save();
   ctx.beginPath();
   ctx.rect(size.l, size.t, size.w, size.h);
   ctx.clip();
   for (const trace of traces) drawTrace(ctx, trace, axes, font);
   ctx.restore();
+  ctx.lastFont = fontBefore; // restore() brought back the font before the clip
   drawLabels(ctx, axes, size, font);
-  canvas.style.display = "";
+  if (canvas.style.display) canvas.style.display = "";
   // the ranges drawn, for tests: a zoom must hold in the live frames too
   canvas.dataset.ranges = JSON.stringify(Object.fromEntries(
     Object.entries(axes).map(([id, axis]) => [id, axis.range])));
-  if (!isLive(gd)) cover(gd, true);
-  gd.dataset.live = "true";
+  if (!isLive(gd)) {
+    cover(gd, true);
+    gd.dataset.live = "true";
+  }
   renameLegend(gd, figure.data);
   return true;
 }
