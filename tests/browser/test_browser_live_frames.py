@@ -126,7 +126,9 @@ def test_a_pointer_drag_is_drawn_live_and_asks_the_server_once_released(explorer
     explorer.page.add_init_script(RECORD)
     explorer.open("?sim=0")
     page = explorer.page
-    box = page.get_by_label("k [N/s] slider", exact=True).bounding_box()
+    slider = page.get_by_label("k [N/s] slider", exact=True)
+    slider.scroll_into_view_if_needed()
+    box = slider.bounding_box()
     y = box["y"] + box["height"] / 2
     start = page.evaluate("(() => { const r = document.getElementById('k-range');"
                           " return (r.value - r.min) / (r.max - r.min); })()")

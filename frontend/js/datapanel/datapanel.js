@@ -13,9 +13,10 @@ import { ApiError, getJSON } from "../page/api.js";
 import {
   cancelJob, isActive, pollJob, residualsCsv, sampleFile, submitFit,
 } from "./fitjob.js";
-import { paramSpec } from "../page/controls.js";
+import { paramList } from "../page/controls.js";
+import { unit, unitsOfReport } from "../page/units.js";
 import { drawFigure, onSchemeChange } from "../plots/draw.js";
-import { download } from "../plots/export.js";
+import { addExportButtons, download, wireExports } from "../plots/export.js";
 import { showFitOutputs, wireFitOutputs } from "./fitoutputs.js";
 import { dataErrorMessage, explorerParams, measuredOverlay } from "./fitparams.js";
 import { fitFigures, formatNumber, modelCaption } from "./fitplots.js";
@@ -205,8 +206,21 @@ function clearResults() {
   clearPlan();
 }
 
+/** The units the page's static text names for a report (data-report-unit): its data's
+ *  (rotary data in N·m and rad); the force of break-away data is F_ba's. */
+function writeReportUnits(report) {
+  const units = { ...report.units, F: report.units?.[report.kind === "breakaway" ? "F_ba" : "F"] };
+  const system = { units: unitsOfReport(report) };
+  for (const element of document.querySelectorAll("[data-report-unit]")) {
+    // the page's text holds the linear unit (a steady report has no s of its own)
+    element.dataset.linear ??= element.textContent;
+    element.textContent = units[element.dataset.reportUnit] ?? unit(element.dataset.linear, system);
+  }
+}
+
 async function showResults(job) {
   const report = job.report;
+  writeReportUnits(report);
   renderSummary(job);
   showFitOutputs(report, panel.explorerS());
   renderErrorTable(report);
@@ -218,13 +232,15 @@ async function showResults(job) {
   if (quizPending()) {
     // before the reveal: the data, the base model and its residual only
     figures.model.data = figures.model.data.filter((t) => t.name !== "final model");
+    if (figures.time) figures.time.data = figures.time.data.filter((t) => t.name !== "final model");
     figures.residual.data = figures.residual.data.filter((t) => !t.name.startsWith("after"));
     figures.effects = [];
   }
   const effectPlots = $("fit-effect-plots");
   effectPlots.replaceChildren(...figures.effects.map(({ effect, regressor }) => plotCard(
-    `fit-plot-effect-${effect}`, `${effect}: residual against ${regressor}`,
+    `fit-plot-effect-${effect}`, `fit-effect-${effect}`, `${effect}: residual against ${regressor}`,
     `Where ${effect} showed: the residual against ${regressor} before (grey) and after (blue).`)));
+  $("fit-time-card").hidden = !figures.time;
   $("fit-results").hidden = false; // visible before drawing, so the plots take their size
   panel.figures = figures;
   await drawFitFigures();
@@ -237,9 +253,34 @@ function drawFitFigures() {
   return Promise.all([
     drawPlanFigure(),
     drawFigure($("fit-plot-model"), figures.model),
+    ...(figures.time ? [drawFigure($("fit-plot-time"), figures.time)] : []),
     drawFigure($("fit-plot-residual"), figures.residual),
     ...figures.effects.map(({ effect, figure }) => drawFigure($(`fit-plot-effect-${effect}`), figure)),
   ]);
+}
+
+/** What an export of one of the fit's plots needs (export.js): its figure, its title
+ *  and a caption of the data and the final model's parameters in the data's units. */
+function describeFitPlot(plot) {
+  const job = panel.result;
+  const figures = panel.figures;
+  if (!job || !figures) return null;
+  const effect = plot.startsWith("fit-effect-") ? plot.slice("fit-effect-".length) : null;
+  const figure = effect ? figures.effects.find((entry) => entry.effect === effect)?.figure
+    : { "fit-model": figures.model, "fit-time": figures.time, "fit-residual": figures.residual }[plot];
+  if (!figure) return null;
+  const report = job.report;
+  const params = Object.entries(report.final.params).map(([name, value]) => {
+    const shown = report.units?.[name];
+    return `${name} = ${formatNumber(value, 4)}${shown && shown !== "-" ? ` ${shown}` : ""}`;
+  });
+  const effects = report.effects.length ? report.effects.join(", ") : "none";
+  return {
+    name: `${stem(job)}-${plot}`,
+    title: document.querySelector(`[data-plot="${plot}"]`).closest(".plot-card").querySelector("h3").textContent,
+    caption: `${job.source}: ${report.kind}, ${report.n} rows; effects found: ${effects}; final model: ${params.join(", ")}`,
+    figure,
+  };
 }
 
 function stem(job) {
@@ -269,12 +310,11 @@ async function downloadResiduals() {
 function useParameters() {
   const job = panel.result;
   if (!job || !panel.applyParams) return;
-  const { values, notes, ranges } = explorerParams(job.report);
-  const applied = panel.applyParams(values, { ranges, measured: measuredOverlay(job) });
-  const set = Object.keys(values).map((name) => `${paramSpec(name)?.symbol ?? name} = ${values[name]}`);
-  $("use-note").textContent = applied === false
+  const { values, notes, ranges, units } = explorerParams(job.report);
+  const state = panel.applyParams(values, { ranges, measured: measuredOverlay(job), units });
+  $("use-note").textContent = state === false
     ? "The explorer is not ready yet; try again in a moment."
-    : `Set ${set.join(", ")}.${notes.length ? ` Note: ${notes.join("; ")}.` : ""}`;
+    : `Set ${paramList(Object.keys(values), state)}.${notes.length ? ` Note: ${notes.join("; ")}.` : ""}`;
 }
 
 // ---------------------------------------------------------------------------------
@@ -364,6 +404,8 @@ export function initDataPanel({ applyParams, tryInLoop, explorerS }) {
   $("present").addEventListener("change", drawFitFigures);
   onSchemeChange(drawFitFigures);
   wireDropZone();
+  addExportButtons($("fit-results"));
+  wireExports($("fit-results"), describeFitPlot);
   // leaving the page mid-fit frees the server's worker
   window.addEventListener("pagehide", () => {
     if (isActive(panel.job)) cancelJob(panel.job.id, true);

@@ -4,12 +4,14 @@
 
 import { ApiError } from "../page/api.js";
 import { PARAMS, roundSignificant } from "../page/controls.js";
+import { unitsOfReport } from "../page/units.js";
 
 /** Explorer parameters that "Use these parameters" sets (rounded to this many digits). */
 const DIGITS = 6;
 
 /**
- * The explorer values a report gives, and notes for the person: Fc, Fs, V, δ from the
+ * The explorer values a report gives, the units of its data (units.js), and notes for
+ * the person: Fc, Fs, V, δ from the
  * final model (for asymmetric data these are the positive-direction levels), s when the
  * data determine it, σ when the viscous effect was found (else 0). Values are rounded to
  * DIGITS significant digits; a value beyond its slider's range is kept (the number box
@@ -55,7 +57,7 @@ export function explorerParams(report, specs = PARAMS) {
   const others = Object.keys(fitted).filter((name) => name !== "n"
     && !specs.some((spec) => spec.name === name));
   if (others.length) notes.push(`the explorer has no control for ${others.join(", ")}`);
-  return { values, notes, ranges };
+  return { values, notes, ranges, units: unitsOfReport(report) };
 }
 
 /** The measured points to overlay in the explorer: on the Stribeck plot (steady data),

@@ -95,18 +95,12 @@ function column(series, name) {
   return Array.from(series.columns[name] ?? []);
 }
 
-/**
- * Measured force with the base and the final model against the main axis (t for a
- * timeseries, v for steady data, k for break-away data). A timeseries is drawn as
- * lines (its rows follow t); steady and break-away data as points.
- */
-export function modelFigure(series, kind, revision) {
-  const x = column(series, series.axis);
-  const dense = kind === "timeseries";
-  const models = kind === "steady" ? "lines" : (dense ? "lines" : "markers");
-  const data = [
+/** The three traces of measured force and the two models over `x`: `mode` "lines" or
+ *  "markers" for the measured points, `models` for the models. */
+function forceTraces(series, x, mode, models) {
+  return [
     {
-      type: "scatter", mode: dense ? "lines" : "markers", name: "measured",
+      type: "scatter", mode, name: "measured",
       x, y: column(series, "measured"),
       line: { color: COLORS.measured, width: 1 },
       marker: { color: COLORS.measured, size: 5 },
@@ -124,7 +118,56 @@ export function modelFigure(series, kind, revision) {
       marker: { color: COLORS.final, size: 6, symbol: "x-thin-open" },
     },
   ];
+}
+
+/**
+ * Measured force with the base and the final model: against x for a time series (the
+ * measured and fitted hysteresis, drawn as lines in the record's order), against v for
+ * steady data, against k for break-away data (as points).
+ */
+export function modelFigure(series, kind, revision) {
+  if (kind === "timeseries") {
+    return { data: forceTraces(series, column(series, "x"), "lines", "lines"),
+      layout: layout(revision, AXIS_TITLES.x, forceTitle(kind)) };
+  }
+  const x = column(series, series.axis);
+  const data = forceTraces(series, x, "markers", kind === "steady" ? "lines" : "markers");
   return { data, layout: layout(revision, AXIS_TITLES[series.axis] ?? series.axis, forceTitle(kind)) };
+}
+
+/** Direction changes of x a time window shows: three full cycles. */
+const WINDOW_REVERSALS = 6;
+
+/** [t0, t1]: the start of a time series over its first WINDOW_REVERSALS reversals of x
+ *  (at least a hundredth of the record; all of it when it turns fewer times). */
+export function timeWindow(t, x) {
+  const end = t[t.length - 1];
+  let turns = 0;
+  let direction = 0;
+  for (let i = 1; i < x.length; i += 1) {
+    const step = Math.sign(x[i] - x[i - 1]);
+    if (!step) continue;
+    if (direction && step !== direction) {
+      turns += 1;
+      if (turns > WINDOW_REVERSALS) return [t[0], Math.max(t[i], t[0] + 0.01 * (end - t[0]))];
+    }
+    direction = step;
+  }
+  return [t[0], end];
+}
+
+/** Measured and fitted force over time, a time series only: a window of a few cycles
+ *  to read them by, zoomable, with the whole record in a range slider under it. */
+export function timeFigure(series, revision) {
+  const t = column(series, "t");
+  const data = forceTraces(series, t, "lines", "lines");
+  const figure = { data, layout: layout(revision, AXIS_TITLES.t, forceTitle("timeseries")) };
+  const range = timeWindow(t, column(series, "x"));
+  Object.assign(figure.layout.xaxis, { range, autorange: false, rangeslider: { visible: true, thickness: 0.12 } });
+  // the legend under the range slider
+  figure.layout.legend = { ...figure.layout.legend, y: -0.45 };
+  figure.layout.margin = { ...figure.layout.margin, b: 110 };
+  return figure;
 }
 
 function residualTraces(series, x, dense) {
@@ -147,7 +190,8 @@ function residualTraces(series, x, dense) {
 /** The caption of the model figure, matching how each kind is drawn. */
 export function modelCaption(kind) {
   if (kind === "timeseries") {
-    return "measured (grey line), base model (red, dashed), final model with the accepted effects (blue)";
+    return "F against x, the measured and fitted hysteresis: measured (grey line), base model "
+      + "(red, dashed), final model with the accepted effects (blue)";
   }
   const models = kind === "steady"
     ? "base model (red, dashed line), final model with the accepted effects (blue line)"
@@ -212,7 +256,8 @@ function relabel(figure, units, forceUnit) {
   return figure;
 }
 
-/** Every figure of one finished fit: {model, residual, effects: [{effect, regressor, figure}]}. */
+/** Every figure of one finished fit: {model, time (a time series' force over time, else
+ *  null), residual, effects: [{effect, regressor, figure}]}. */
 export function fitFigures(job) {
   const { series, report } = job;
   const kind = report.kind;
@@ -220,6 +265,7 @@ export function fitFigures(job) {
   const forceUnit = units?.[kind === "breakaway" ? "F_ba" : "F"] ?? "N";
   return {
     model: relabel(modelFigure(series, kind, job.id), units, forceUnit),
+    time: kind === "timeseries" ? relabel(timeFigure(series, job.id), units, forceUnit) : null,
     residual: relabel(residualFigure(series, kind, job.id), units, forceUnit),
     effects: report.effects.filter((effect) => effect in series.effect_regressor).map((effect) => ({
       effect,

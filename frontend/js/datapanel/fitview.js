@@ -3,6 +3,7 @@
 // candidate's verdict and the residual structure). State and requests live elsewhere
 // (datapanel.js, fitjob.js).
 
+import { exportButtons } from "../plots/export.js";
 import { formatNumber, formatWithError, paramLabel } from "./fitplots.js";
 
 const $ = (id) => document.getElementById(id);
@@ -67,6 +68,17 @@ export function renderErrorTable(report) {
   );
 }
 
+/** "moves with V (r = −0.997): Fc + 613·V = 13.28 ± 0.014 N is determined": the
+ *  combination of a parameter and the one it is correlated with that the data fix. */
+export function combination(name, params, tied, unit) {
+  const combined = params[name] - tied.slope * params[tied.with];
+  const sign = tied.slope < 0 ? "+" : "−";
+  const r = `${tied.r < 0 ? "−" : ""}${Math.abs(tied.r).toFixed(3)}`;
+  const shown = unit && unit !== "-" ? ` ${unit}` : "";
+  return `moves with ${tied.with} (r = ${r}): ${name} ${sign} ${formatNumber(Math.abs(tied.slope), 3)}·${tied.with}`
+    + ` = ${formatNumber(combined, 4)} ± ${formatNumber(tied.stderr, 2)}${shown} is determined`;
+}
+
 export function renderParamTable(report) {
   const base = report.base;
   const final = report.final;
@@ -81,6 +93,13 @@ export function renderParamTable(report) {
       if (!(name in fit.params)) return element("td", { "data-model": model, text: "–" });
       const determined = fit.determined?.[name] !== false;
       const stderr = fit.stderr?.[name];
+      const tied = determined ? null : report.correlated?.[model]?.[name];
+      if (tied) {
+        // not determined only because it moves with another: what the data do determine
+        return element("td", { "data-model": model, "data-determined": "false", "data-with": tied.with,
+          className: "correlated" }, formatWithError(fit.params[name], stderr),
+        element("span", { className: "combination", text: combination(name, fit.params, tied, unit) }));
+      }
       const text = determined ? formatWithError(fit.params[name], stderr)
         : formatNumber(fit.params[name], 4)
           + (stderr == null ? "" : ` ± ${formatNumber(stderr, 2)}`) + " ⚠ not determined";
@@ -126,9 +145,13 @@ export function renderSteps(report) {
   $("fit-structure-box").hidden = !structure.length;
 }
 
-export function plotCard(id, title, caption) {
+/** A card for one of the fit's figures: its title, export buttons, plot and caption
+ *  (`plot`: the name its export buttons give, data-plot). */
+export function plotCard(id, plot, title, caption) {
+  const exports = exportButtons(plot, title);
   return element("figure", { className: "plot-card fit-card" },
-    element("h3", { text: title }),
+    element("div", { className: "plot-head" }, element("h3", { text: title }),
+      element("div", { className: "export" }, ...exports)),
     element("div", { className: "fit-plot", id, role: "group", "aria-label": title }),
     element("figcaption", { text: caption }));
 }

@@ -31,7 +31,7 @@ export function startQuiz(report) {
   const select = $("quiz-guess");
   select.replaceChildren(element("option", { value: "", text: "(choose)" }),
     // the library's effects for this kind, as the engine's registry lists them: the
-    // report names every one in its candidates (MODEL.md §8)
+    // report names every one in its candidates
     ...Object.keys(report.candidates ?? {}).map((e) => element("option", { value: e, text: e })),
     element("option", { value: "none", text: "nothing: the base model explains it" }),
     element("option", { value: "outside", text: "something the library does not have" }));

@@ -6,56 +6,21 @@
 // its error and is not taken.
 
 import {
-  parseNumber, registerControlWriter, roundSignificant, sliderToValue, valueToSlider,
+  buildControl, paramList, parseNumber, registerControlWriter, roundSignificant,
+  sliderToValue, valueToSlider,
 } from "../page/controls.js";
 import { wireSliderKeys } from "../page/inputs.js";
 import {
-  LOOP_CONTROLS, compParams, loopError, loopSpec,
+  COMP_PARAMS, LOOP_CONTROLS, compParams, loopError, loopSpec,
 } from "./loopstate.js";
 import { refresh, settleNow } from "../page/render.js";
 import { $, app, commit } from "../page/store.js";
 
-const STEPS = 1000;
 /** Where each slider goes in the loop's fieldset. */
 const HOSTS = {
   Kp: "gains", Ki: "gains", Kd: "gains", m_loop: "gains", h: "reference", w: "reference",
   f: "reference", c: "compensation", u_max: "limit",
 };
-
-function sliderMax(spec) {
-  return spec.scale === "linear" ? Math.round((spec.max - spec.min) / spec.step) : STEPS;
-}
-
-function element(tag, props = {}) {
-  return Object.assign(document.createElement(tag), props);
-}
-
-/** One slider + number box, as the friction's (controls.js buildControls). */
-function buildControl(spec) {
-  const wrap = element("div", { className: "control" });
-  wrap.dataset.param = spec.name;
-  const label = element("label", { htmlFor: spec.name, textContent: spec.label });
-  const row = element("div", { className: "control-row" });
-  const rangeLabel = element("label", {
-    htmlFor: `${spec.name}-range`, className: "visually-hidden", textContent: `${spec.label} slider`,
-  });
-  const range = element("input", {
-    type: "range", id: `${spec.name}-range`, min: "0", max: String(sliderMax(spec)), step: "1",
-  });
-  range.dataset.param = spec.name;
-  const box = element("input", {
-    type: "text", inputMode: "decimal", id: spec.name, name: spec.name, autocomplete: "off",
-    spellcheck: false,
-  });
-  box.dataset.param = spec.name;
-  box.setAttribute("aria-describedby", `${spec.name}-help ${spec.name}-error`);
-  const help = element("p", { id: `${spec.name}-help`, className: "hint", textContent: spec.help });
-  const error = element("p", { id: `${spec.name}-error`, className: "error", hidden: true });
-  error.setAttribute("role", "alert");
-  row.append(rangeLabel, range, box);
-  wrap.append(label, row, help, error);
-  return wrap;
-}
 
 function showError(name, message) {
   const error = $(`${name}-error`);
@@ -74,9 +39,7 @@ function showUsed(state) {
   $("loop-comp-model").querySelector('option[value="fitted"]').disabled = !fitted;
   $("loop-comp-model").closest(".control").hidden = state.comp === "off";
   $("loop-comp-model-note").textContent = fitted
-    ? `the fitted model: Fc = ${roundSignificant(state.cFc, 4)}, Fs = ${roundSignificant(state.cFs, 4)} N, `
-      + `V = ${roundSignificant(state.cV, 4)} m/s, δ = ${roundSignificant(state.cdelta, 4)}, `
-      + `σ = ${roundSignificant(state.csigma, 4)} N·s/m`
+    ? `the fitted model: ${paramList(COMP_PARAMS, state, { values: compParams(state) })}`
     : "a fitted model comes from the data panel (Try this model in a control loop)";
 }
 

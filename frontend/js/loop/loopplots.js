@@ -5,18 +5,22 @@
 // and the note's (E13) value at that k (◆). Nothing here touches the DOM. Colours:
 // palette.js.
 
+import {
+  fmt, hover, label, quantity,
+} from "../page/units.js";
 import { PALETTE } from "../plots/palette.js";
+import { plotLayout } from "../plots/plots.js";
 
-/** Axis titles per plot, also the CSV columns of an export. */
-export const LOOP_AXES = {
-  "loop-position": { x: "t [s]", y: "r, x [m]" },
-  "loop-error": { x: "t [s]", y: "e = r − x [m]" },
-  "loop-force": { x: "t [s]", y: "u, F [N]" },
-};
+/** The three plots' axis titles in the state's units, also the CSV columns of an export. */
+export function loopAxes(plot, state) {
+  const y = { "loop-position": label("r, x", "m", state), "loop-error": label("e = r − x", "m", state),
+    "loop-force": label("u, F", "N", state) }[plot];
+  return { x: "t [s]", y };
+}
 
-export function fmt(value, digits = 3) {
-  if (value == null || !Number.isFinite(value)) return "–";
-  return String(Number(value.toPrecision(digits)));
+/** A hover label "t = … s<br>name = … unit" in the state's units. */
+function atTime(name, linear, state, format = ".4g") {
+  return `t = %{x:.3g} s<br>${hover(name, "y", format, linear, state)}<extra></extra>`;
 }
 
 /** Index of the sample nearest to time `t` in the sorted times `ts`. */
@@ -30,64 +34,57 @@ export function indexAt(ts, t) {
   return Math.abs(ts[lo] - t) <= Math.abs(ts[hi] - t) ? lo : hi;
 }
 
-function layout(plot, duration, extra = {}) {
-  return {
-    uirevision: plot, // keeps a person's zoom across redraws
-    margin: { l: 58, r: 12, t: 8, b: 42 },
-    font: { size: 11 },
-    hovermode: "closest",
-    showlegend: true,
-    legend: { orientation: "h", x: 0, y: -0.24, yanchor: "top" },
-    // the three plots share the run's time axis
-    xaxis: { title: { text: LOOP_AXES[plot].x, standoff: 4 }, range: [0, duration] },
-    yaxis: { title: { text: LOOP_AXES[plot].y, standoff: 4 }, zeroline: true, exponentformat: "power" },
-    ...extra,
-  };
+function layout(plot, state, duration, extra = {}) {
+  const out = plotLayout(plot, loopAxes(plot, state), {
+    legend: { orientation: "h", x: 0, y: -0.24, yanchor: "top" }, ...extra });
+  // the three plots share the run's time axis
+  out.xaxis = { ...out.xaxis, range: [0, duration] };
+  return out;
 }
 
 const duration = (loop) => loop.duration ?? loop.t[loop.t.length - 1];
 
 /** r(t) and x(t), each break-away marked on x. */
-export function positionFigure(loop) {
+export function positionFigure(loop, state) {
   const colors = PALETTE.loopPosition;
   const phases = loop.stick_phases;
   const at = phases.map((phase) => indexAt(loop.t, phase.t_ba));
   const data = [
     { type: "scatter", mode: "lines", name: "r (reference)", x: loop.t, y: loop.r,
       line: { color: colors.r, width: 1.5, dash: "dash" },
-      hovertemplate: "t = %{x:.3g} s<br>r = %{y:.4g} m<extra></extra>" },
+      hovertemplate: atTime("r", "m", state) },
     { type: "scatter", mode: "lines", name: "x (position)", x: loop.t, y: loop.x,
       line: { color: colors.x, width: 2 },
-      hovertemplate: "t = %{x:.3g} s<br>x = %{y:.4g} m<extra></extra>" },
+      hovertemplate: atTime("x", "m", state) },
   ];
   if (phases.length) {
     data.push({
       type: "scatter", mode: "markers", name: "break-away", x: at.map((i) => loop.t[i]),
       y: at.map((i) => loop.x[i]), marker: { color: colors.breakAway, size: 8, symbol: "x" },
-      hovertemplate: "break-away<br>t = %{x:.4g} s<br>x = %{y:.4g} m<extra></extra>",
+      hovertemplate: `break-away<br>${atTime("x", "m", state)}`,
     });
   }
-  return { data, layout: layout("loop-position", duration(loop)) };
+  return { data, layout: layout("loop-position", state, duration(loop)) };
 }
 
 /** e(t), and the band ±amplitude of the hunting over the run's last half. */
-export function errorFigure(loop) {
+export function errorFigure(loop, state) {
   const colors = PALETTE.loopError;
   const data = [{
     type: "scatter", mode: "lines", name: "e = r − x", x: loop.t, y: loop.e,
     line: { color: colors.e, width: 1.6 },
-    hovertemplate: "t = %{x:.3g} s<br>e = %{y:.4g} m<extra></extra>",
+    hovertemplate: atTime("e", "m", state),
   }];
   const end = duration(loop);
   if (loop.hunting) {
     const a = loop.hunting.amplitude;
     data.push({
-      type: "scatter", mode: "lines", name: `hunting: ±${fmt(a)} m`, x: [end / 2, end, null, end / 2, end],
+      type: "scatter", mode: "lines", name: `hunting: ±${quantity(a, "m", state)}`, x: [end / 2, end, null, end / 2, end],
       y: [a, a, null, -a, -a], line: { color: colors.band, width: 1.2, dash: "dot" },
-      hovertemplate: "amplitude = %{y:.3g} m<extra></extra>",
+      hovertemplate: `${hover("amplitude", "y", ".3g", "m", state)}<extra></extra>`,
     });
   }
-  return { data, layout: layout("loop-error", end, { showlegend: Boolean(loop.hunting) }) };
+  return { data, layout: layout("loop-error", state, end, { showlegend: Boolean(loop.hunting) }) };
 }
 
 /** u(t) and F(t), and every stick phase: u while the body sticks (a band under u), the
@@ -112,20 +109,20 @@ export function forceFigure(loop, state) {
     }] : []),
     { type: "scatter", mode: "lines", name: "u (controller)", x: loop.t, y: loop.u,
       line: { color: colors.u, width: 2 },
-      hovertemplate: "t = %{x:.3g} s<br>u = %{y:.4g} N<extra></extra>" },
+      hovertemplate: atTime("u", "N", state) },
     { type: "scatter", mode: "lines", name: "F (friction)", x: loop.t, y: loop.F,
       line: { color: colors.F, width: 1.6, dash: "dash" },
-      hovertemplate: "t = %{x:.3g} s<br>F = %{y:.4g} N<extra></extra>" },
+      hovertemplate: atTime("F", "N", state) },
   ];
-  if (!phases.length) return { data, layout: layout("loop-force", duration(loop)) };
+  if (!phases.length) return { data, layout: layout("loop-force", state, duration(loop)) };
   const details = phases.map((phase, i) => [i + 1, phase.k, phase.u_ba, phase.E13]);
-  const hover = "phase %{customdata[0]}: t_ba = %{x:.4g} s<br>k = %{customdata[1]:.3g} N/s"
-    + "<br>u_ba = %{customdata[2]:.4g} N (simulation)<br>E13 = %{customdata[3]:.4g} N"
-    + ` (F̂ = ${state.F_hat})<extra></extra>`;
+  const phaseHover = `phase %{customdata[0]}: t_ba = %{x:.4g} s<br>${hover("k", "customdata[1]", ".3g", "N/s", state)}`
+    + `<br>${hover("u_ba", "customdata[2]", ".4g", "N", state)} (simulation)`
+    + `<br>${hover("E13", "customdata[3]", ".4g", "N", state)} (F̂ = ${state.F_hat})<extra></extra>`;
   data.push({
     type: "scatter", mode: "markers", name: "u_ba (simulated)", x: phases.map((p) => p.t_ba),
     y: phases.map((p) => p.u_ba), customdata: details,
-    marker: { color: colors.breakAway, size: 9, symbol: "x" }, hovertemplate: hover,
+    marker: { color: colors.breakAway, size: 9, symbol: "x" }, hovertemplate: phaseHover,
   });
   const predicted = phases.map((phase, i) => [phase, details[i]]).filter(([phase]) => phase.E13 != null);
   if (predicted.length) {
@@ -133,17 +130,17 @@ export function forceFigure(loop, state) {
       type: "scatter", mode: "markers", name: `E13 at k (F̂ = ${state.F_hat})`,
       x: predicted.map(([p]) => p.t_ba), y: predicted.map(([p]) => p.E13),
       customdata: predicted.map(([, d]) => d),
-      marker: { color: colors.e13, size: 8, symbol: "diamond" }, hovertemplate: hover,
+      marker: { color: colors.e13, size: 8, symbol: "diamond" }, hovertemplate: phaseHover,
     });
   }
-  return { data, layout: layout("loop-force", duration(loop)) };
+  return { data, layout: layout("loop-force", state, duration(loop)) };
 }
 
 /** The three figures of one answer, keyed by plot id. */
 export function loopFigures(loop, state) {
   return {
-    "loop-position": positionFigure(loop),
-    "loop-error": errorFigure(loop),
+    "loop-position": positionFigure(loop, state),
+    "loop-error": errorFigure(loop, state),
     "loop-force": forceFigure(loop, state),
   };
 }

@@ -1,7 +1,7 @@
-// The control loop's part of the explorer's state (MODEL.md §5b): its controls' table,
-// its defaults (the server's params.LOOP_DEFAULTS, echoed by POST /api/loop {}), its
-// round trip through the URL, and the body of POST /api/loop. Pure but for loadLoop-
-// Defaults. The friction comes from the explorer's sliders (Fc, Fs, V, δ, σ, s, z*, F̂);
+// The control loop's part of the explorer's state (a PID position loop on the model's
+// friction): its controls' table, its defaults (the server's params.LOOP_DEFAULTS,
+// echoed by POST /api/loop {}), its round trip through the URL, and the body of
+// POST /api/loop. Pure but for loadLoopDefaults. The friction comes from the explorer's sliders (Fc, Fs, V, δ, σ, s, z*, F̂);
 // the mass is the loop's own `m_loop`: the ramp's default m = 1e-4 kg with the loop's
 // default gains makes the linear loop unstable (Kd·Kp = 9e-5 < m·Ki = 3e-4 N²·s/m²).
 
@@ -9,27 +9,30 @@ import { parseNumber, roundSignificant } from "../page/controls.js";
 import { LOOP_SERIES } from "../models/loopmodel.js";
 
 /** The loop's sliders, in the order of the form: the table controls.js's sliders use
- *  (scale log, log0 with 0 at the left end, or linear with step). `when`: the state in
+ *  (named: the label's words, symbol, unit: linear, in the state's units on the page;
+ *  scale log, log0 with 0 at the left end, or linear with step). `when`: the state in
  *  which the control shows (the reference's kind, the compensation, the limit). */
 export const LOOP_CONTROLS = [
-  { name: "Kp", label: "Kp [N/m]", help: "proportional gain, ≥ 0", scale: "log", min: 1e-3, max: 1 },
-  { name: "Ki", label: "Ki [N/(m·s)]", help: "integral gain, ≥ 0 (slider's left end is 0: no integral action)",
-    scale: "log0", min: 0.01, max: 100 },
-  { name: "Kd", label: "Kd [N·s/m]", help: "derivative gain on ṙ − ẋ (no kick at a step), ≥ 0 (left end 0)",
-    scale: "log0", min: 1e-4, max: 0.1 },
-  { name: "m_loop", label: "Loop mass (m_loop) [kg]",
+  { name: "Kp", named: "Kp", symbol: "Kp", unit: "N/m", help: "proportional gain, ≥ 0",
+    scale: "log", min: 1e-3, max: 1 },
+  { name: "Ki", named: "Ki", symbol: "Ki", unit: "N/(m·s)",
+    help: "integral gain, ≥ 0 (slider's left end is 0: no integral action)", scale: "log0", min: 0.01, max: 100 },
+  { name: "Kd", named: "Kd", symbol: "Kd", unit: "N·s/m",
+    help: "derivative gain on ṙ − ẋ (no kick at a step), ≥ 0 (left end 0)", scale: "log0", min: 1e-4, max: 0.1 },
+  { name: "m_loop", named: "Loop mass (m_loop)", symbol: "m_loop", unit: "kg",
     help: "the loop's moving mass, > 0 (its own: the ramp's m with these gains is unstable)",
     scale: "log", min: 1e-6, max: 1e-2 },
-  { name: "h", label: "Reference size h [m]", help: "the step's height, or the sine's amplitude, > 0",
+  { name: "h", named: "Reference size h", symbol: "h", unit: "m", help: "the step's height, or the sine's amplitude, > 0",
     scale: "log", min: 0.1, max: 1000, when: (state) => state.ref !== "ramp" },
-  { name: "w", label: "Ramp speed w [m/s]", help: "the ramp's speed from rest, > 0",
+  { name: "w", named: "Ramp speed w", symbol: "w", unit: "m/s", help: "the ramp's speed from rest, > 0",
     scale: "log", min: 0.1, max: 1000, when: (state) => state.ref === "ramp" },
-  { name: "f", label: "Sine frequency f [Hz]", help: "the sine's frequency, > 0",
+  { name: "f", named: "Sine frequency f", symbol: "f", unit: "Hz", help: "the sine's frequency, > 0",
     scale: "log", min: 0.02, max: 10, when: (state) => state.ref === "sine" },
-  { name: "c", label: "Compensation scale c", help: "u gets c·Fss(ṙ): 1 is exact, ≥ 0",
+  { name: "c", named: "Compensation scale c", symbol: "c", unit: "", help: "u gets c·Fss(ṙ): 1 is exact, ≥ 0",
     scale: "linear", min: 0, max: 2, step: 0.05, when: (state) => state.comp === "scaled" },
-  { name: "u_max", label: "Force limit u_max [N]", help: "|u| ≤ u_max, > 0; the integrator winds up meanwhile",
-    scale: "log", min: 0.1, max: 100, when: (state) => state.limit },
+  { name: "u_max", named: "Force limit u_max", symbol: "u_max", unit: "N",
+    help: "|u| ≤ u_max, > 0; the integrator winds up meanwhile", scale: "log", min: 0.1, max: 100,
+    when: (state) => state.limit },
 ];
 
 export const REFERENCES = ["step", "ramp", "sine"];

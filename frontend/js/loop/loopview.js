@@ -1,5 +1,5 @@
 // The control loop as a view of the registry (views.js) with a request of its own
-// (POST /api/loop, MODEL.md §5b): three plots from one answer (loopplots.js), the
+// (POST /api/loop): three plots from one answer (loopplots.js), the
 // sentence under them (loopexplain.js) and the stick-phase table. The page runs the loop
 // itself (loopmodel.js in a worker, 4–5 ms for the default 5-s run; a run over its step
 // budget goes to the server), so while its card is on the screen it follows every
@@ -9,18 +9,21 @@
 // compensation switched) are run too, at most four, the previous ones aborted.
 
 import { postJSON } from "../page/api.js";
-import { validate } from "../page/controls.js";
+import { captionOf, paramList, validate } from "../page/controls.js";
+import { fmt } from "../page/units.js";
 import { buildLoopControls, widenLoopRange } from "./loopcontrols.js";
 import { explainLoop, summarise, whatIfStates } from "./loopexplain.js";
-import { LOOP_AXES, loopFigures, phaseRows } from "./loopplots.js";
+import { loopFigures, phaseRows } from "./loopplots.js";
 import {
-  LOOP_CONTROLS, fittedLoopState, loadLoopDefaults, localLoop, loopBody, loopDefaults, readLoop,
-  writeLoop,
+  LOOP_CONTROLS, compScale, fittedLoopState, loadLoopDefaults, localLoop, loopBody, loopDefaults,
+  loopSpec, readLoop, writeLoop,
 } from "./loopstate.js";
 import { onPhone, plotMovedBy, showPlotInView } from "../page/phone.js";
 import { onStateLeft } from "../page/render.js";
 import { registerStatePart } from "../page/state.js";
-import { $, app, whenIdle } from "../page/store.js";
+import {
+  $, app, shownState, whenIdle,
+} from "../page/store.js";
 import { viewResult, viewsBusy } from "../page/viewrequests.js";
 import { registerView } from "../page/views.js";
 
@@ -38,6 +41,20 @@ function settled() {
 
 let onScreen = false; // the loop's card is on the screen (on a phone: in the strip's view)
 
+const FRICTION = captionOf(["Fc", "Fs", "V", "delta", "sigma", "s", "z_ba"], { fHat: true });
+const REFERENCE_SIZES = { step: ["h"], ramp: ["w"], sine: ["h", "f"] };
+
+/** The loop's plots are drawn with the friction, the loop's mass and gains, its
+ *  reference, compensation and force limit: the caption of their exports. */
+function loopCaption(state) {
+  const loop = paramList(["Kp", "Ki", "Kd", "m_loop", ...REFERENCE_SIZES[state.ref]], state, { specOf: loopSpec });
+  const scale = compScale(state);
+  const compensation = scale > 0
+    ? `, compensation c = ${fmt(scale)} (${state.comp_model === "fitted" ? "the fitted model" : "the plant's"})` : "";
+  const limit = state.limit ? `, ${paramList(["u_max"], state, { specOf: loopSpec })}` : "";
+  return `${FRICTION(state)}; a ${state.ref} reference, ${loop}${compensation}${limit}`;
+}
+
 /** Asked for live at every change while the card is on the screen; valid states only
  *  (an invalid one is not sent: its errors show at the controls). */
 const live = (state) => onScreen && !Object.keys(validate(state)).length;
@@ -45,7 +62,8 @@ const live = (state) => onScreen && !Object.keys(validate(state)).length;
 registerView({
   id: "loop",
   source: "request",
-  axes: LOOP_AXES["loop-position"],
+  plots: ["loop-position", "loop-error", "loop-force"],
+  caption: loopCaption,
   request: { url: "/api/loop", body: loopBody, debounceMs: LOOP_DEBOUNCE_MS, live, local: localLoop },
   figures: ({ state, result }) => loopFigures(result, state),
   onDraw: (result, state) => showNumbers(result, state),
@@ -124,7 +142,8 @@ function askWhatIfs(state, result, key) {
       if (whatifs.cache.size > KEPT) whatifs.cache.delete(whatifs.cache.keys().next().value);
       whatifs.controller = null;
       whatifs.key = null;
-      if (keyOf(app.state) === key && app.results.loop) showNumbers(app.results.loop.value, app.state);
+      const state = shownState();
+      if (keyOf(state) === key && app.results.loop) showNumbers(app.results.loop.value, state);
     } catch (error) {
       if (error.name === "AbortError") return;
       whatifs.controller = null;
@@ -162,6 +181,7 @@ export function openLoopView() {
 /** On a phone, the plot of the loop in view (the others stay laid out under it). */
 function showLoopPlot(id) {
   document.querySelector(".loop-plots").dataset.inView = id;
+  $("card-loop").dataset.inView = id;
   for (const button of document.querySelectorAll("[data-loop-show]")) {
     button.setAttribute("aria-pressed", String(button.dataset.loopShow === id));
   }

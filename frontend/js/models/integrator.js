@@ -198,7 +198,7 @@ export function integrate(model, y, {
   return { status: STATUS_STEP_LIMIT, t, F: model.force(t, y), jumps };
 }
 
-/** g(v) of (E2) with the limits of MODEL.md §2 at v = 0 (dynamics.common._g). */
+/** g(v) of (E2) with its limits at v = 0 (dynamics.common._g). */
 export function g(v, Fc, Fs, V, delta) {
   const av = Math.abs(v);
   if (av === 0.0) return delta > 0 ? Fs : Fc;

@@ -1,4 +1,4 @@
-// The position loop of MODEL.md §5b computed in the page, for the frames drawn while a
+// The PID position loop on the model's friction computed in the page, for the frames drawn while a
 // hand moves a slider with the loop's card on the screen: the answer of POST /api/loop
 // for the presliding plant (backend/breakaway/loop.py), from the same integrator step by
 // step (integrator.js) and the same model (dynamics/loop_model.py):
@@ -195,7 +195,7 @@ function resolve(body, defaults) {
 }
 
 /**
- * One run of the §5b loop with everything the loop view shows (loop.loop_experiment),
+ * One run of the position loop with everything the loop view shows (loop.loop_experiment),
  * for `body` = the body of POST /api/loop with the presliding plant, the missing fields
  * from `defaults` ({h, w, f, duration}, the server's); null when the run needs
  * more than `maxSteps` steps or the server would refuse the body.

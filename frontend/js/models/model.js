@@ -200,26 +200,43 @@ export function breakawayForce(k, p, fHat = p.F_hat) {
   return steadyForce(breakawayVelocity(k, p, fHat), p);
 }
 
+/** The last value of each part of a frame, by the parameters it depends on: a slider
+ *  moves some parts only (k the current phase curve, s the loop and the phase family, V
+ *  the Stribeck and break-away curves), and a live frame recomputes only those. */
+const parts = {};
+
+function part(name, key, compute) {
+  const last = parts[name];
+  if (last && last.key === key) return last.value;
+  const value = compute();
+  parts[name] = { key, value };
+  return value;
+}
+
 /**
  * Every curve of one explorer redraw for the parameters `p` ({Fc, Fs, V, delta, sigma,
- * s, z_ba, k, F_hat}, numbers already valid): the shape of the /api/explore answer.
+ * s, z_ba, k, F_hat}, numbers already valid): the shape of the /api/explore answer. A
+ * part equal to the last frame's is that frame's (the same arrays).
  */
 export function modelFrame(p) {
-  const v = linspace(-5.0 * p.V, 5.0 * p.V, GRID.stribeck);
-  const z = linspace(0.0, GRID.zMax, GRID.phase);
-  const rates = [...FIG3_RATES, Number(p.k)];
-  const curves = rates.map((k) => ({
-    k, v: z.map((zi) => e12Velocity(e12Work(zi, k, p.s), p, p.F_hat)),
-  }));
-  const kGrid = linspace(GRID.kMin, GRID.kMax, GRID.breakaway);
-  const breakaway = { k: kGrid };
-  for (const fHat of F_HAT_CHOICES) {
-    breakaway[fHat] = kGrid.map((k) => breakawayForce(k, p, fHat));
-  }
+  const steady = [p.Fc, p.Fs, p.V, p.delta, p.sigma].join();
+  const z = part("z", "", () => linspace(0.0, GRID.zMax, GRID.phase));
+  const curve = (k) => ({ k, v: z.map((zi) => e12Velocity(e12Work(zi, k, p.s), p, p.F_hat)) });
+  const reading = `${steady},${p.s},${p.F_hat}`;
+  const family = part("family", reading, () => FIG3_RATES.map(curve));
+  const current = part("current", `${reading},${p.k}`, () => curve(Number(p.k)));
   return {
-    stribeck: { v, F: v.map((vi) => steadyForce(vi, p)) },
-    hysteresis: hysteresisLoop(p),
-    phase: { z, curves },
-    breakaway,
+    stribeck: part("stribeck", steady, () => {
+      const v = linspace(-5.0 * p.V, 5.0 * p.V, GRID.stribeck);
+      return { v, F: v.map((vi) => steadyForce(vi, p)) };
+    }),
+    hysteresis: part("hysteresis", `${steady},${p.s}`, () => hysteresisLoop(p)),
+    phase: part("phase", `${reading},${p.k}`, () => ({ z, curves: [...family, current] })),
+    breakaway: part("breakaway", `${steady},${p.s},${p.z_ba}`, () => {
+      const kGrid = linspace(GRID.kMin, GRID.kMax, GRID.breakaway);
+      const out = { k: kGrid };
+      for (const fHat of F_HAT_CHOICES) out[fHat] = kGrid.map((k) => breakawayForce(k, p, fHat));
+      return out;
+    }),
   };
 }

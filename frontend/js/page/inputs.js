@@ -5,13 +5,17 @@
 import {
   PARAMS, couple, moveSlider, parseNumber, validate, writeControls,
 } from "./controls.js";
-import { onSchemeChange } from "../plots/draw.js";
-import { exportCsv, exportPng } from "../plots/export.js";
+import { onSchemeChange, setPresentation } from "../plots/draw.js";
+import { addExportButtons, wireExports } from "../plots/export.js";
 import { redraw, refresh, settleNow } from "./render.js";
 import { defaultState, fromQuery, presetState } from "./state.js";
-import { $, app, commit } from "./store.js";
-import { drawView, prefetchViews } from "./viewrequests.js";
-import { requestViews } from "./views.js";
+import {
+  $, app, commit, setToggle, shownState,
+} from "./store.js";
+import { drawView, prefetchViews, viewFigures } from "./viewrequests.js";
+import {
+  pageFigures, requestViews, viewOfPlot,
+} from "./views.js";
 
 /** Show `state`: into the controls, the history (unless `push` is false), the plots. */
 export function setState(state, { push = true } = {}) {
@@ -26,6 +30,24 @@ function restyle() {
   if (!app.frame) return;
   redraw();
   for (const view of requestViews()) drawView(view.id);
+}
+
+/** The title of plot `plot` as its card names it (and its own name in a card of several). */
+function plotTitle(plot) {
+  const card = $(`plot-${plot}`).closest(".plot-card");
+  const title = card.querySelector("h2, h3").textContent.trim();
+  const picker = card.querySelectorAll(".plot").length > 1 && card.querySelector(`[aria-controls="plot-${plot}"]`);
+  return picker ? `${title}: ${picker.textContent.trim().toLowerCase()}` : title;
+}
+
+/** What an export of plot `plot` needs (export.js): the figure shown now, plain, its
+ *  title and its caption; null before the plot shows anything. */
+function describePlot(plot) {
+  const view = viewOfPlot(plot);
+  const state = shownState();
+  const figures = view.source === "frame" ? app.frame && pageFigures(app.frame, state, [plot]) : viewFigures(view.id, state);
+  if (!figures?.[plot]) return null;
+  return { name: plot, title: plotTitle(plot), caption: view.caption(state, plot), figure: figures[plot] };
 }
 
 /** Where a key moves a range input: one position, a tenth of the range, the ends (as
@@ -110,8 +132,8 @@ export function wireControls() {
     refresh();
   });
   $("present").addEventListener("change", () => {
-    app.state.present = $("present").checked;
-    document.body.classList.toggle("present", app.state.present);
+    setToggle("present", $("present").checked);
+    setPresentation(app.state.present);
     commit();
     restyle();
   });
@@ -132,12 +154,8 @@ export function wireControls() {
       status.textContent = `Copy this link: ${window.location.href}`;
     }
   });
-  for (const button of document.querySelectorAll("[data-export]")) {
-    button.addEventListener("click", () => {
-      if (button.dataset.export === "csv") exportCsv(button.dataset.plot);
-      else exportPng(button.dataset.plot);
-    });
-  }
+  addExportButtons($("plots"));
+  wireExports($("plots"), describePlot);
   window.addEventListener("popstate", () => {
     app.commitPending = false; // the entry walked to is the state now
     setState(fromQuery(window.location.search, app.defaults), { push: false });

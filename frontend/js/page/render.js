@@ -1,5 +1,5 @@
 // The explorer's one render path:
-//   state → validate (MODEL.md §1) → a frame → pure figure builders (the views of
+//   state → validate (the model's constraints) → a frame → pure figure builders (the views of
 //   views.js) → the plots, in two steps:
 //   live     at the next animation frame, the model's curves computed in the page
 //            (model.js) drawn on a canvas in each plot's own axes (surfaces.js): what a
@@ -18,7 +18,9 @@ import { PLOT_CONFIG, pageStyle } from "../plots/draw.js";
 import { modelFrame } from "../models/model.js";
 import { styled } from "../plots/plots.js";
 import { exploreBody, matchingPreset } from "./state.js";
-import { $, app, setBusy, updateSimBusy } from "./store.js";
+import {
+  $, app, setAttr, setBusy, setHidden, setText, shownState, updateSimBusy,
+} from "./store.js";
 import { live, settle } from "../plots/surfaces.js";
 import { frameViewIds, pageFigures } from "./views.js";
 
@@ -70,19 +72,23 @@ export function refresh({ hold = false } = {}) {
   showErrors(errors);
   hideServerError();
   updatePresetSelect();
+  if (Object.keys(errors).length) {
+    // the plots keep the last valid state, and what is on its way for it (its settled
+    // frame, the ramp and the loop, their sentences) carries on
+    setAttr($("plots"), "data-valid", "false");
+    app.lastValid ??= app.validCopy;
+    if (!app.settleTimer && !app.exploreController) setBusy(false);
+    updateSimBusy();
+    return;
+  }
+  app.lastValid = null;
+  app.validCopy = { ...app.state };
   app.version += 1;
   clearTimeout(app.settleTimer);
   app.settleTimer = null;
   if (app.exploreController) app.exploreController.abort();
   app.exploreController = null;
-  if (Object.keys(errors).length) {
-    notify("left", { frameChanged: true });
-    $("plots").dataset.valid = "false";
-    setBusy(false);
-    updateSimBusy();
-    return;
-  }
-  $("plots").dataset.valid = "true";
+  setAttr($("plots"), "data-valid", "true");
   const frameChanged = JSON.stringify(exploreBody(app.state)) !== app.frameKey;
   setBusy(true);
   // the pending simulations are for the state just left: drop them now, so they do not
@@ -121,7 +127,7 @@ function settleLater(version) {
 /** The curves of the current state for a live frame: the server's frame when it is
  *  for these curves already (only m moved), else computed here. */
 function liveFrame() {
-  const body = exploreBody(app.state);
+  const body = exploreBody(shownState());
   const key = JSON.stringify(body);
   if (app.frame && key === app.frameKey) return app.frame;
   if (app.liveCache?.key !== key) app.liveCache = { key, frame: modelFrame(body) };
@@ -131,8 +137,8 @@ function liveFrame() {
 function drawLiveFrame() {
   app.liveRequest = null;
   const version = app.version;
-  if (!app.busy || app.shownVersion === version || $("plots").dataset.valid === "false") return;
-  const figs = pageFigures(liveFrame(), app.state);
+  if (!app.busy || app.shownVersion === version) return;
+  const figs = pageFigures(liveFrame(), shownState());
   for (const id of frameViewIds()) live(id, styled(figs[id], pageStyle()));
   app.shownVersion = version;
   app.frames += 1;
@@ -147,7 +153,7 @@ function showingLive() {
 
 function settleFrame(version) {
   const started = performance.now();
-  const body = exploreBody(app.state);
+  const body = exploreBody(shownState());
   const key = JSON.stringify(body);
   const controller = new AbortController();
   app.exploreController = controller;
@@ -183,7 +189,7 @@ function settleFrame(version) {
 /** Plotly draws the current frame's views; between two plots a key or a pointer may
  *  come (then false: a newer state is on its way). */
 async function drawSettled(version) {
-  const figs = pageFigures(app.frame, app.state);
+  const figs = pageFigures(app.frame, shownState());
   const ids = frameViewIds();
   if (!app.liveOn || app.frames === 0) {
     await Promise.all(ids.map((id) => showPlot(id, figs[id])));
@@ -211,7 +217,7 @@ export function showPlot(id, plain) {
 export function drawLiveNow(id, plain, ids = []) {
   if (!app.liveOn || app.frames === 0 || !app.frame) return false;
   const done = live(id, styled(plain, pageStyle()));
-  const figs = pageFigures(app.busy ? liveFrame() : app.frame, app.state, ids);
+  const figs = pageFigures(app.busy ? liveFrame() : app.frame, shownState(), ids);
   for (const other of ids) live(other, styled(figs[other], pageStyle()));
   return done;
 }
@@ -220,17 +226,17 @@ export function drawLiveNow(id, plain, ids = []) {
  *  the style or an overlay changed. */
 export function redraw(ids = frameViewIds()) {
   if (!app.frame) return Promise.resolve();
-  const figs = pageFigures(showingLive() ? liveFrame() : app.frame, app.state, ids);
+  const figs = pageFigures(showingLive() ? liveFrame() : app.frame, shownState(), ids);
   return Promise.all(ids.map((id) => showPlot(id, figs[id])));
 }
 
 function updatePresetSelect() {
   const name = matchingPreset(app.state, app.presets);
-  $("preset").value = name;
+  if ($("preset").value !== name) $("preset").value = name;
   const preset = app.presets.find((p) => p.name === name);
-  $("preset-description").textContent = preset ? preset.description : "";
+  setText($("preset-description"), preset ? preset.description : "");
   // the note's s = 1 scaling: say so wherever these numbers are read
-  $("units-note").hidden = !(preset ? preset.units === "normalised" : Number(app.state.s) === 1);
+  setHidden($("units-note"), !(preset ? preset.units === "normalised" : Number(app.state.s) === 1));
 }
 
 export function showServerError(error) {
@@ -248,5 +254,5 @@ export function showServerError(error) {
 }
 
 function hideServerError() {
-  $("server-error").hidden = true;
+  setHidden($("server-error"), true);
 }

@@ -1,9 +1,11 @@
 // The explorer's whole state, and its round trip through the URL's query string.
 // A state is a plain object: the model parameters (numbers, or the text a person typed
-// when it is not a number yet), F_hat, the toggles `sim`, `lugre` and `present`, and the
-// parts that views keep of their own (registerStatePart).
+// when it is not a number yet), F_hat, the toggles `sim`, `lugre` and `present`, the
+// units the page is written in (units.js), and the parts that views keep of their own
+// (registerStatePart).
 
 import { PARAMS, parseNumber } from "./controls.js";
+import { UNIT_SYSTEMS } from "./units.js";
 
 /** The numeric parameters' names (PARAMS is filled from the server at start-up). */
 function paramNames() {
@@ -27,17 +29,19 @@ export function partDefaults(name) {
 
 /** A full state from the server's defaults (GET /api/presets → defaults). */
 export function defaultState(defaults) {
-  const state = { ...TOGGLES };
+  const state = { ...TOGGLES, units: "linear" };
   for (const name of paramNames()) state[name] = defaults[name];
   state.F_hat = defaults.F_hat;
   for (const part of parts) Object.assign(state, part.defaults());
   return state;
 }
 
-/** The state a preset gives, keeping the toggles of `current`. */
+/** The state a preset gives, keeping the toggles of `current`, and its units unless the
+ *  preset is in SI units (a normalised preset's numbers hold in any). */
 export function presetState(preset, defaults, current) {
   const state = defaultState({ ...defaults, ...preset.params });
   for (const name of Object.keys(TOGGLES)) state[name] = current[name];
+  state.units = preset.units === "SI" ? "linear" : current.units;
   for (const part of parts) {
     for (const name of Object.keys(part.defaults())) state[name] = current[name];
   }
@@ -52,6 +56,7 @@ export function toQuery(state) {
   query.set("sim", state.sim ? "1" : "0");
   query.set("lugre", state.lugre ? "1" : "0");
   if (state.present) query.set("present", "1");
+  if (state.units !== "linear") query.set("units", state.units);
   for (const part of parts) part.write(state, query);
   return `?${query.toString()}`;
 }
@@ -70,6 +75,7 @@ export function fromQuery(search, defaults) {
   for (const name of Object.keys(TOGGLES)) {
     if (query.has(name)) state[name] = query.get(name) === "1";
   }
+  if (UNIT_SYSTEMS.includes(query.get("units"))) state.units = query.get("units");
   for (const part of parts) part.read(query, state);
   return state;
 }

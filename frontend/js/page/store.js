@@ -12,6 +12,11 @@ export const app = {
   defaults: null,
   presets: [],
   state: null,
+  // the state the plots show while `state` is invalid (the last valid one: the plots keep
+  // it, and what is on its way for it carries on), else null; `validCopy` a copy of the
+  // last valid state (inputs change `state` in place)
+  lastValid: null,
+  validCopy: null,
   frame: null,
   frameKey: null, // the /api/explore body the frame answers
   liveOn: true, // live frames while a hand moves (off: every change drawn by Plotly)
@@ -47,6 +52,33 @@ const waiting = { ready: [], sim: [], views: [] };
 
 export const $ = (id) => document.getElementById(id);
 
+/** Set an element's text, attribute or `hidden` only when it changes: every key press
+ *  writes them, and an unchanged write still makes the browser lay the page out anew
+ *  (a text node replaced) or check its styles again. */
+export function setText(element, text) {
+  if (element.textContent !== text) element.textContent = text;
+}
+
+export function setAttr(element, name, value) {
+  if (element.getAttribute(name) !== value) element.setAttribute(name, value);
+}
+
+export function setHidden(element, hidden) {
+  if (element.hidden !== hidden) element.hidden = hidden;
+}
+
+/** The state the plots and views show: the current one while it is valid, else the last
+ *  valid one. */
+export function shownState() {
+  return app.lastValid ?? app.state;
+}
+
+/** Set a toggle (sim, lugre, present) in the state and in the state shown. */
+export function setToggle(name, value) {
+  app.state[name] = value;
+  if (app.lastValid) app.lastValid[name] = value;
+}
+
 /** Resolve everything waiting for `kind` ("ready", "sim" or "views"). */
 export function flush(kind) {
   const resolve = waiting[kind];
@@ -66,9 +98,9 @@ export function setBusy(busy) {
   app.busy = busy;
   if (!busy && app.frames > 0) $("loading").hidden = true;
   const plots = $("plots");
-  plots.dataset.ready = busy ? "false" : "true";
-  plots.dataset.frame = String(app.frames);
-  plots.setAttribute("aria-busy", busy ? "true" : "false");
+  setAttr(plots, "data-ready", busy ? "false" : "true");
+  setAttr(plots, "data-frame", String(app.frames));
+  setAttr(plots, "aria-busy", busy ? "true" : "false");
   if (busy) return;
   if (app.commitPending) setTimeout(writeHistory);
   else flush("ready");
@@ -79,7 +111,7 @@ export function updateSimBusy() {
   // a frame on its way schedules the simulation when it is drawn
   const frameDue = app.busy && Boolean(app.state?.sim);
   app.simBusy = Boolean(app.simTimer || app.simController || app.lugreController || frameDue);
-  $("plots").dataset.simReady = app.simBusy ? "false" : "true";
+  setAttr($("plots"), "data-sim-ready", app.simBusy ? "false" : "true");
   if (!app.simBusy) flush("sim");
 }
 

@@ -18,7 +18,9 @@ import {
   beforeSettle, drawLiveNow, onFrameDrawn, onStateLeft, redraw, showPlot,
 } from "./render.js";
 import { exploreBody } from "./state.js";
-import { $, app, flush, whenIdle } from "./store.js";
+import {
+  $, app, flush, shownState, whenIdle,
+} from "./store.js";
 import { requestViews, viewOf } from "./views.js";
 
 const KEPT = 8;
@@ -135,20 +137,22 @@ function askLive(view) {
   const entry = run(view.id);
   clearTimeout(entry.timer);
   entry.timer = null;
-  const key = keyOf(view, app.state);
+  const state = shownState();
+  const key = keyOf(view, state);
   entry.again = false;
   if (app.results[view.id]?.key === key) {
     // a change this view does not depend on (the loop's gains for the ramp) draws nothing
     if (entry.drawn !== key) drawView(view.id);
   } else if (flying(entry, key)) return;
-  else if (entry.flying.size < LIVE_FLYING) ask(view, app.state, { live: true });
+  else if (entry.flying.size < LIVE_FLYING) ask(view, state, { live: true });
   else entry.again = true;
 }
 
 /** Once a state's frame is settled: its answer drawn, or asked for after the debounce. */
 function schedule(view) {
   if (!app.frame) return;
-  const key = keyOf(view, app.state);
+  const state = shownState();
+  const key = keyOf(view, state);
   const entry = run(view.id);
   if (app.results[view.id]?.key === key) {
     drawView(view.id);
@@ -162,7 +166,7 @@ function schedule(view) {
   clearTimeout(entry.timer);
   entry.timer = setTimeout(() => {
     entry.timer = null;
-    ask(view, app.state);
+    ask(view, shownState());
   }, view.request.debounceMs ?? 0);
 }
 
@@ -183,6 +187,16 @@ export function prefetchViews(states) {
   }
 }
 
+/** The figures view `id` shows for its last answer, {plot id: figure} (a view may draw
+ *  several plots from one answer: figures(ctx)), or null before its first answer. */
+export function viewFigures(id, state = shownState()) {
+  const view = viewOf(id);
+  const result = app.results[id];
+  if (!result || !app.frame) return null;
+  const ctx = { frame: app.frame, state, result: result.value };
+  return view.figures ? view.figures(ctx) : { [id]: view.figure(ctx) };
+}
+
 /** Draw view `id` from its last answer, and the frame views that show it too; `now`:
  *  first at once on the live canvases, Plotly in a task of its own. */
 export function drawView(id, { now = false } = {}) {
@@ -190,9 +204,8 @@ export function drawView(id, { now = false } = {}) {
   const result = app.results[id];
   if (!result || !app.frame) return Promise.resolve();
   run(id).drawn = result.key;
-  const ctx = { frame: app.frame, state: app.state, result: result.value };
-  // a view may draw several plots from one answer: figures(ctx) → {plot id: figure}
-  const shown = view.figures ? view.figures(ctx) : { [id]: view.figure(ctx) };
+  const state = shownState();
+  const shown = viewFigures(id, state);
   const settled = () => Promise.all([
     ...Object.entries(shown).map(([plot, figure]) => showPlot(plot, figure)),
     redraw(view.redraws ?? [])]);
@@ -201,7 +214,7 @@ export function drawView(id, { now = false } = {}) {
   // for the page's styles to be recomputed (0.7 ms, once a canvas)
   const drawnLive = now && Object.entries(shown).map(([plot, figure], i) => drawLiveNow(plot,
     figure, i === 0 ? view.redraws ?? [] : [])).every(Boolean);
-  view.onDraw?.(result.value, app.state);
+  view.onDraw?.(result.value, state);
   if (!drawnLive) return settled();
   return new Promise((resolve) => { setTimeout(() => settled().then(resolve, resolve)); });
 }
@@ -211,7 +224,7 @@ export function drawView(id, { now = false } = {}) {
 onStateLeft(({ frameChanged }) => {
   for (const view of requestViews()) {
     // a view quick enough to answer (request.live(state) true) follows every change live
-    if (frameChanged && !view.request.live?.(app.state)) cancel(view); else askLive(view);
+    if (frameChanged && !view.request.live?.(shownState())) cancel(view); else askLive(view);
   }
 });
 onFrameDrawn(() => requestViews().forEach(schedule));

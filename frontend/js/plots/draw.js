@@ -14,10 +14,23 @@ export const PLOT_CONFIG = {
 };
 
 const DARK = window.matchMedia("(prefers-color-scheme: dark)");
+/** How the page is shown now, kept here: every live frame asks, and asking the browser
+ *  (a media query's `matches`) brings its styles up to date first. */
+const shown = { present: false, dark: DARK.matches };
+DARK.addEventListener("change", () => { shown.dark = DARK.matches; });
 
-/** How the page is shown now: presentation mode (a class on <body>) and dark mode. */
+/** Presentation mode on or off: a class on <html> (its root type size) and <body>. A
+ *  class, not a :has() rule: :has() made the browser check the root's style again at every
+ *  change of the page's text, at every key press. */
+export function setPresentation(on) {
+  shown.present = on;
+  document.documentElement.classList.toggle("present", on);
+  document.body.classList.toggle("present", on);
+}
+
+/** How the page is shown now: presentation mode and dark mode. */
 export function pageStyle() {
-  return { present: document.body.classList.contains("present"), dark: DARK.matches };
+  return { ...shown };
 }
 
 /** Call `redraw` when the system switches between light and dark. */

@@ -10,26 +10,49 @@
 import { autorange, ticks } from "./axes.js";
 import { AXIS_KEY } from "./draw.js";
 
+/** The axis attributes a live drawing reads (the figure's over Plotly's full axis, which
+ *  holds hundreds: copying it whole cost a frame a millisecond under a phone's CPU). */
+const AXIS_STYLE = ["exponentformat", "gridcolor", "gridwidth", "overlaying", "showgrid", "side",
+  "tickfont", "tickmode", "zeroline", "zerolinecolor", "zerolinewidth"];
+
+function axisStyle(full, own) {
+  const style = {};
+  for (const name of AXIS_STYLE) style[name] = own[name] ?? full[name];
+  return style;
+}
+
 /** Plotly's layers that the canvas stands in for, in the graph's first SVG. */
 const COVERED = [".bglayer", ".layer-below", ".cartesianlayer"];
 const DASHES = { dash: 3, dot: 1, longdash: 5 };
 
+/** Graph -> its Plotly container, first SVG, live canvas and that canvas's context,
+ *  found once (each frame asked the DOM five times a plot), found again when Plotly has
+ *  replaced them. */
+const found = new WeakMap();
+
 function layers(gd) {
+  const known = found.get(gd);
+  if (known?.main.isConnected && known.main.parentNode === known.container && gd.contains(known.container)) {
+    return known;
+  }
   const container = gd.querySelector(".svg-container");
   const main = container?.querySelector("svg.main-svg");
-  return { container, main };
+  const entry = { container, main, canvas: container?.querySelector("canvas.live-layer") ?? null, ctx: null };
+  if (main) found.set(gd, entry);
+  return entry;
 }
 
 function canvasOf(gd) {
-  const { container, main } = layers(gd);
-  let canvas = container.querySelector("canvas.live-layer");
-  if (!canvas) {
-    canvas = document.createElement("canvas");
-    canvas.className = "live-layer";
-    canvas.setAttribute("aria-hidden", "true");
-    main.after(canvas);
+  const entry = layers(gd);
+  if (!entry.canvas || entry.canvas.parentNode !== entry.container) {
+    entry.canvas = document.createElement("canvas");
+    entry.canvas.className = "live-layer";
+    entry.canvas.setAttribute("aria-hidden", "true");
+    entry.main.after(entry.canvas);
+    entry.ctx = null;
   }
-  return canvas;
+  entry.ctx ??= entry.canvas.getContext("2d");
+  return entry;
 }
 
 function cover(gd, hidden) {
@@ -49,7 +72,7 @@ export function isLive(gd) {
 export function clearLive(gd) {
   if (!isLive(gd)) return;
   gd.dataset.live = "false";
-  const canvas = layers(gd).container?.querySelector("canvas.live-layer");
+  const { canvas } = layers(gd);
   if (canvas) canvas.style.display = "none";
   cover(gd, false);
 }
@@ -84,7 +107,7 @@ function axesOf(gd, figure, traces) {
         return line ? toPixel(0.5 * (r0 + r1 - 20 * Math.abs(r0 - r1))) : NaN;
       } : toPixel,
       length,
-      style: { ...full[key], ...figure.layout[key] },
+      style: axisStyle(full[key], figure.layout[key]),
     };
   }
   // an axis laid over another takes its ticks where the other's are (tickmode "sync")
@@ -101,27 +124,62 @@ function axesOf(gd, figure, traces) {
   return out;
 }
 
+/** The canvas's font, set only when it changes: each assignment parses the font anew
+ *  and brings the page's styles up to date. */
 function setFont(ctx, size, family) {
-  ctx.font = `${size}px ${family}`;
+  const font = `${size}px ${family}`;
+  if (ctx.lastFont !== font) {
+    ctx.font = font;
+    ctx.lastFont = font;
+  }
 }
 
-/** A tick label, with Plotly's <sup> powers drawn raised at 70 %. */
-function drawLabel(ctx, text, x, y, align, size, family) {
-  const match = /^(.*?)<sup>(.*)<\/sup>$/.exec(text);
-  const base = match ? match[1] : text;
-  const sup = match ? match[2] : "";
-  setFont(ctx, size, family);
-  const baseWidth = ctx.measureText(base).width;
-  setFont(ctx, size * 0.7, family);
-  const supWidth = sup ? ctx.measureText(sup).width : 0;
-  const width = baseWidth + supWidth;
-  const left = align === "end" ? x - width : align === "middle" ? x - width / 2 : x;
+/** Widths of texts [px] by font and text: the tick labels of one frame are mostly those
+ *  of the one before. */
+const widths = new Map();
+const WIDTHS_KEPT = 2000;
+
+function textWidth(ctx, text, size, family) {
+  const key = `${size}px ${family}\u0000${text}`;
+  let width = widths.get(key);
+  if (width === undefined) {
+    setFont(ctx, size, family);
+    width = ctx.measureText(text).width;
+    if (widths.size >= WIDTHS_KEPT) widths.clear();
+    widths.set(key, width);
+  }
+  return width;
+}
+
+/** Tick labels [{text, x, y, align, size, family, color}], Plotly's <sup> powers raised
+ *  at 70 %: the bases first, then the powers, so that the font changes once or twice a
+ *  plot rather than twice a label. */
+function drawTickLabels(ctx, labels) {
+  const parts = [];
+  for (const label of labels) {
+    const match = /^(.*?)<sup>(.*)<\/sup>$/.exec(label.text);
+    const base = match ? match[1] : label.text;
+    const sup = match ? match[2] : "";
+    const supSize = label.size * 0.7;
+    const baseWidth = textWidth(ctx, base, label.size, label.family);
+    const width = baseWidth + (sup ? textWidth(ctx, sup, supSize, label.family) : 0);
+    const left = label.align === "end" ? label.x - width : label.align === "middle" ? label.x - width / 2 : label.x;
+    parts.push({ text: base, x: left, y: label.y, size: label.size, family: label.family, color: label.color });
+    if (sup) {
+      parts.push({ text: sup, x: left + baseWidth, y: label.y - 0.6 * supSize, size: supSize,
+        family: label.family, color: label.color });
+    }
+  }
+  parts.sort((a, b) => a.size - b.size);
   ctx.textAlign = "left";
-  setFont(ctx, size, family);
-  ctx.fillText(base, left, y);
-  if (sup) {
-    setFont(ctx, size * 0.7, family);
-    ctx.fillText(sup, left + baseWidth, y - 0.6 * size * 0.7);
+  let color = null;
+  for (const part of parts) {
+    setFont(ctx, part.size, part.family);
+    if (part.color !== color) {
+      color = part.color;
+      ctx.fillStyle = color;
+    }
+    ctx.fillText(part.text, part.x, part.y);
   }
 }
 
@@ -153,26 +211,29 @@ function drawGrid(ctx, axes, size) {
 }
 
 function drawLabels(ctx, axes, size, font) {
+  const labels = [];
   for (const axis of Object.values(axes)) {
     const tickfont = axis.style.tickfont ?? {};
     const fontSize = tickfont.size ?? font.size ?? 12;
     const family = tickfont.family ?? font.family;
-    ctx.fillStyle = tickfont.color ?? font.color ?? "#444";
+    const color = tickfont.color ?? font.color ?? "#444";
     const [lo, hi] = axis.range;
     for (const tick of axis.ticks) {
       if (tick.value < Math.min(lo, hi) - 1e-9 * Math.abs(hi - lo)
           || tick.value > Math.max(lo, hi) + 1e-9 * Math.abs(hi - lo)) continue;
       const labelSize = fontSize * tick.scale;
       const p = axis.toPixel(tick.value);
+      const label = { text: tick.text, size: labelSize, family, color };
       if (axis.letter === "x") {
-        drawLabel(ctx, tick.text, p, size.t + size.h + 0.5 + labelSize, "middle", labelSize, family);
+        labels.push({ ...label, x: p, y: size.t + size.h + 0.5 + labelSize, align: "middle" });
       } else if (axis.style.side === "right") {
-        drawLabel(ctx, tick.text, size.l + size.w + 1, p + 0.35 * labelSize, "start", labelSize, family);
+        labels.push({ ...label, x: size.l + size.w + 1, y: p + 0.35 * labelSize, align: "start" });
       } else {
-        drawLabel(ctx, tick.text, size.l - 1, p + 0.35 * labelSize, "end", labelSize, family);
+        labels.push({ ...label, x: size.l - 1, y: p + 0.35 * labelSize, align: "end" });
       }
     }
   }
+  drawTickLabels(ctx, labels);
 }
 
 /** Plotly's marker shapes (plotly.js symbol_defs) at radius r around (x, y). */
@@ -233,18 +294,38 @@ function drawTrace(ctx, trace, axes, font) {
     ctx.lineWidth = width;
     ctx.strokeStyle = line.color ?? "#1f77b4";
     ctx.beginPath();
+    // a point within half a pixel of the last one drawn adds nothing to see (Plotly
+    // simplifies its lines too); the last point of a run is always drawn
     let pen = false;
+    let lastX = 0; // the last point drawn
+    let lastY = 0;
+    let skipped = false; // a point passed over since, the last at (skipX, skipY)
+    let skipX = 0;
+    let skipY = 0;
     for (let i = 0; i < xs.length; i += 1) {
       const px = xs[i] == null ? NaN : xAxis.map(xs[i], true);
       const py = ys[i] == null ? NaN : yAxis.map(ys[i], true);
       if (!Number.isFinite(px) || !Number.isFinite(py)) {
+        if (skipped) ctx.lineTo(skipX, skipY);
         pen = false;
-      } else if (pen) ctx.lineTo(px, py);
-      else {
+        skipped = false;
+      } else if (!pen) {
         ctx.moveTo(px, py);
         pen = true;
+        lastX = px;
+        lastY = py;
+      } else if (Math.abs(px - lastX) < 0.5 && Math.abs(py - lastY) < 0.5) {
+        skipped = true;
+        skipX = px;
+        skipY = py;
+      } else {
+        ctx.lineTo(px, py);
+        lastX = px;
+        lastY = py;
+        skipped = false;
       }
     }
+    if (skipped) ctx.lineTo(skipX, skipY);
     ctx.stroke();
     ctx.setLineDash([]);
   }
@@ -311,7 +392,7 @@ export function drawLive(gd, figure) {
   const axes = axesOf(gd, figure, traces);
   if (!axes.x || !axes.y) return false;
   const size = full._size;
-  const canvas = canvasOf(gd);
+  const { canvas, ctx } = canvasOf(gd);
   const ratio = window.devicePixelRatio || 1;
   const width = full.width;
   const height = full.height;
@@ -320,27 +401,31 @@ export function drawLive(gd, figure) {
     canvas.height = Math.round(height * ratio);
     canvas.style.width = `${width}px`;
     canvas.style.height = `${height}px`;
+    ctx.lastFont = null; // a resized canvas forgets its font
   }
-  const ctx = canvas.getContext("2d");
   ctx.setTransform(ratio, 0, 0, ratio, 0, 0);
   ctx.clearRect(0, 0, width, height);
   const font = { ...full.font, ...(figure.layout.font ?? {}) };
   ctx.fillStyle = figure.layout.plot_bgcolor ?? full.plot_bgcolor ?? "#fff";
   ctx.fillRect(size.l, size.t, size.w, size.h);
   drawGrid(ctx, axes, size);
+  const fontBefore = ctx.lastFont;
   ctx.save();
   ctx.beginPath();
   ctx.rect(size.l, size.t, size.w, size.h);
   ctx.clip();
   for (const trace of traces) drawTrace(ctx, trace, axes, font);
   ctx.restore();
+  ctx.lastFont = fontBefore; // restore() brought back the font before the clip
   drawLabels(ctx, axes, size, font);
-  canvas.style.display = "";
+  if (canvas.style.display) canvas.style.display = "";
   // the ranges drawn, for tests: a zoom must hold in the live frames too
   canvas.dataset.ranges = JSON.stringify(Object.fromEntries(
     Object.entries(axes).map(([id, axis]) => [id, axis.range])));
-  if (!isLive(gd)) cover(gd, true);
-  gd.dataset.live = "true";
+  if (!isLive(gd)) {
+    cover(gd, true);
+    gd.dataset.live = "true";
+  }
   renameLegend(gd, figure.data);
   return true;
 }

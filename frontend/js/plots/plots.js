@@ -1,7 +1,9 @@
 // Pure functions from one /api/explore frame (and the simulation results) to fresh
-// Plotly figures {data, layout}. Nothing here touches the DOM; the render path hands
-// the figures to the plots. Colours: palette.js.
+// Plotly figures {data, layout}, titled and hovered in the state's units (units.js).
+// Nothing here touches the DOM; the render path hands the figures to the plots.
+// Colours: palette.js.
 
+import { hover, label, unit } from "../page/units.js";
 import { DARK_INK, PALETTE } from "./palette.js";
 
 export const PLOT_IDS = ["stribeck", "hysteresis", "phase", "breakaway"];
@@ -12,15 +14,25 @@ const F_HAT_DASH = { Fc: "solid", Fs: "dash", avg: "solid", self: "dot" };
 
 const F_HAT_LABEL = { Fc: "F̂ = Fc", Fs: "F̂ = Fs", avg: "F̂ = avg", self: "F̂ = self" };
 
-/** Axis titles per plot, also the CSV column names of each plot's export. */
-export const AXES = {
-  stribeck: { x: "v [m/s]", y: "Fss [N]" },
-  hysteresis: { x: "x [m]", y: "F [N]" },
-  phase: { x: "z [-]", y: "ẋ [m/s]" },
-  breakaway: { x: "k [N/s]", y: "F_ba [N]" },
-};
+/** Axis titles of `plot` in the state's units, also the CSV columns of its export. */
+export function plotAxes(plot, state) {
+  const named = (symbol, linear) => label(symbol, linear, state);
+  switch (plot) {
+    case "stribeck": return { x: named("v", "m/s"), y: named("Fss", "N") };
+    case "hysteresis": return { x: named("x", "m"), y: named("F", "N") };
+    case "phase": return { x: "z [-]", y: named("ẋ", "m/s") };
+    default: return { x: named("k", "N/s"), y: named("F_ba", "N") };
+  }
+}
 
-function baseLayout(plot, extra = {}) {
+/** Hover lines "k = … N/s<br>F_ba = … N" of a plot's axes in the state's units. */
+function hoverXY(state, [x, xUnit, xFormat], [y, yUnit, yFormat]) {
+  return `${hover(x, "x", xFormat, xUnit, state)}<br>${hover(y, "y", yFormat, yUnit, state)}`;
+}
+
+/** The layout the explorer's plots start from: fixed margins, the axes titled `axes`
+ *  ({x, y}), a person's zoom kept across redraws; `extra` replaces whole keys. */
+export function plotLayout(plot, axes, extra = {}) {
   return {
     uirevision: plot, // keeps a person's zoom across redraws
     margin: { l: 58, r: 12, t: 8, b: 42 },
@@ -29,26 +41,31 @@ function baseLayout(plot, extra = {}) {
     showlegend: true,
     legend: { x: 1, xanchor: "right", y: 1, bgcolor: "rgba(255,255,255,0.75)" },
     // fixed margins: automargin would cost a second layout pass on every redraw
-    xaxis: { title: { text: AXES[plot].x, standoff: 4 }, zeroline: true },
-    yaxis: { title: { text: AXES[plot].y, standoff: 4 }, zeroline: true, exponentformat: "power" },
+    xaxis: { title: { text: axes.x, standoff: 4 }, zeroline: true },
+    yaxis: { title: { text: axes.y, standoff: 4 }, zeroline: true, exponentformat: "power" },
     ...extra,
   };
 }
 
-export function stribeckFigure(frame) {
+function baseLayout(plot, state, extra = {}) {
+  return plotLayout(plot, plotAxes(plot, state), extra);
+}
+
+export function stribeckFigure(frame, state) {
   const data = [{
     type: "scatter", mode: "lines", name: "Fss(v)",
     x: frame.stribeck.v, y: frame.stribeck.F,
     line: { color: PALETTE.stribeck.curve, width: 2 },
-    hovertemplate: "v = %{x:.3g} m/s<br>Fss = %{y:.4g} N<extra></extra>",
+    hovertemplate: `${hoverXY(state, ["v", "m/s", ".3g"], ["Fss", "N", ".4g"])}<extra></extra>`,
   }];
-  return { data, layout: baseLayout("stribeck", { showlegend: false }) };
+  return { data, layout: baseLayout("stribeck", state, { showlegend: false }) };
 }
 
 /** The loop's branches coloured by the direction of travel (blue moving +x, orange
  *  moving −x: a colour-blind-safe pair), with arrowheads along them. */
-export function hysteresisFigure(frame, state = null) {
+export function hysteresisFigure(frame, state) {
   const { x, F } = frame.hysteresis;
+  const hovered = hoverXY(state, ["x", "m", ".3g"], ["F", "N", ".3g"]);
   const forward = { x: [], y: [] };
   const backward = { x: [], y: [] };
   const arrows = { x: [], y: [], symbol: [] };
@@ -77,16 +94,16 @@ export function hysteresisFigure(frame, state = null) {
   const data = [
     { type: "scatter", mode: "lines", name: "moving +x", x: forward.x, y: forward.y,
       connectgaps: false, line: { color: PALETTE.hysteresis.forward, width: 1.8 },
-      hovertemplate: "moving +x<br>x = %{x:.3g} m<br>F = %{y:.3g} N<extra></extra>" },
+      hovertemplate: `moving +x<br>${hovered}<extra></extra>` },
     { type: "scatter", mode: "lines", name: "moving −x", x: backward.x, y: backward.y,
       connectgaps: false, line: { color: PALETTE.hysteresis.backward, width: 1.8 },
-      hovertemplate: "moving −x<br>x = %{x:.3g} m<br>F = %{y:.3g} N<extra></extra>" },
+      hovertemplate: `moving −x<br>${hovered}<extra></extra>` },
     { type: "scatter", mode: "markers", name: "direction of travel", x: arrows.x, y: arrows.y,
       hoverinfo: "skip", showlegend: false,
       marker: { symbol: arrows.symbol, size: 8, color: arrows.symbol.map(
         (s) => (s === "triangle-right" ? PALETTE.hysteresis.forward : PALETTE.hysteresis.backward)) } },
   ];
-  const layout = baseLayout("hysteresis", {
+  const layout = baseLayout("hysteresis", state, {
     legend: { x: 0, xanchor: "left", y: 1, bgcolor: "rgba(255,255,255,0.75)" },
   });
   return { data, layout };
@@ -114,21 +131,22 @@ export function phaseFigure(frame, state) {
     ks.push(null);
   }
   const current = curves[curves.length - 1];
-  const label = family.length
+  const name = family.length
     ? `k = ${fmt(family[0].k)}, ${fmt(family[1]?.k)}, …, ${fmt(family[family.length - 1].k)}`
     : "family";
+  const zv = (format) => hoverXY(state, ["z", "", ".3f"], ["ẋ", "m/s", format]);
   const data = [
     {
-      type: "scatter", mode: "lines", name: label,
+      type: "scatter", mode: "lines", name,
       x: xs, y: ys, customdata: ks, connectgaps: false,
       line: { color: PALETTE.phase.family, width: 1 },
-      hovertemplate: "k = %{customdata:.4g} N/s<br>z = %{x:.3f}<br>ẋ = %{y:.3g} m/s<extra></extra>",
+      hovertemplate: `${hover("k", "customdata", ".4g", "N/s", state)}<br>${zv(".3g")}<extra></extra>`,
     },
     {
       type: "scatter", mode: "lines", name: `current k = ${fmt(current.k)}`,
       x: z, y: current.v,
       line: { color: PALETTE.phase.current, width: 3 },
-      hovertemplate: `k = ${fmt(current.k)} N/s<br>z = %{x:.3f}<br>ẋ = %{y:.4g} m/s<extra></extra>`,
+      hovertemplate: `k = ${fmt(current.k)} ${unit("N/s", state)}<br>${zv(".4g")}<extra></extra>`,
     },
   ];
   const zStar = Number(state.z_ba);
@@ -139,8 +157,8 @@ export function phaseFigure(frame, state) {
     x: [zStar, zStar], y: [lo, hi], hoverinfo: "skip",
     line: { color: PALETTE.phase.zStar, width: 1, dash: "dot" },
   });
-  const layout = baseLayout("phase", {
-    yaxis: { title: { text: `${AXES.phase.y} (log)`, standoff: 4 }, type: "log",
+  const layout = baseLayout("phase", state, {
+    yaxis: { title: { text: `${plotAxes("phase", state).y} (log)`, standoff: 4 }, type: "log",
       exponentformat: "power" },
     // below the plot: inside, it covered the log axis and the family's slow end
     legend: { orientation: "h", x: 0, y: -0.2, yanchor: "top" },
@@ -190,11 +208,12 @@ export const BAND_NAME = "most sensitive to V, δ";
  */
 export function breakawayFigure(frame, state, sim = null, lugre = null, band = null) {
   const ba = frame.breakaway;
+  const kF = (force) => hoverXY(state, ["k", "N/s", ".3g"], [force, "N", ".4g"]);
   const data = ["Fc", "Fs", "avg", "self"].map((name) => ({
     type: "scatter", mode: "lines", name: F_HAT_LABEL[name],
     x: ba.k, y: ba[name],
     line: { color: COLORS[name], width: name === state.F_hat ? 3 : 1.3, dash: F_HAT_DASH[name] },
-    hovertemplate: `${F_HAT_LABEL[name]}<br>k = %{x:.3g} N/s<br>F_ba = %{y:.4g} N<extra></extra>`,
+    hovertemplate: `${F_HAT_LABEL[name]}<br>${kF("F_ba")}<extra></extra>`,
   }));
   const k = Number(state.k);
   const yCurrent = interpolate(ba.k, ba[state.F_hat], k);
@@ -202,7 +221,7 @@ export function breakawayFigure(frame, state, sim = null, lugre = null, band = n
     type: "scatter", mode: "markers", name: `current k = ${fmt(k)}`,
     x: [k], y: [yCurrent],
     marker: { color: COLORS.current, size: 11, symbol: "circle", line: { color: "#fff", width: 1 } },
-    hovertemplate: "current k<br>k = %{x:.3g} N/s<br>F_ba = %{y:.4g} N<extra></extra>",
+    hovertemplate: `current k<br>${kF("F_ba")}<extra></extra>`,
   });
   if (sim) {
     const opacity = sim.stale ? 0.35 : 1;
@@ -210,13 +229,13 @@ export function breakawayFigure(frame, state, sim = null, lugre = null, band = n
       type: "scatter", mode: "markers", name: "ramp sim.: u(t_ba)",
       x: sim.k, y: sim.u_ba, opacity,
       marker: { color: COLORS.simulation, size: 7, symbol: "circle" },
-      hovertemplate: "ramp simulation<br>k = %{x:.3g} N/s<br>u(t_ba) = %{y:.4g} N<extra></extra>",
+      hovertemplate: `ramp simulation<br>${kF("u(t_ba)")}<extra></extra>`,
     });
     data.push({
       type: "scatter", mode: "markers", name: "ramp sim.: F(t_ba)",
       x: sim.k, y: sim.F_ba, opacity,
       marker: { color: COLORS.simulation, size: 7, symbol: "circle-open" },
-      hovertemplate: "ramp simulation<br>k = %{x:.3g} N/s<br>F(t_ba) = %{y:.4g} N<extra></extra>",
+      hovertemplate: `ramp simulation<br>${kF("F(t_ba)")}<extra></extra>`,
     });
   }
   if (lugre) {
@@ -224,7 +243,7 @@ export function breakawayFigure(frame, state, sim = null, lugre = null, band = n
       type: "scatter", mode: "markers", name: "LuGre 1995: max F",
       x: lugre.k, y: lugre.F_ba, opacity: lugre.stale ? 0.35 : 1,
       marker: { color: COLORS.lugre, size: 8, symbol: "diamond" },
-      hovertemplate: "LuGre 1995<br>k = %{x:.3g} N/s<br>max F = %{y:.4g} N<extra></extra>",
+      hovertemplate: `LuGre 1995<br>${kF("max F")}<extra></extra>`,
     });
   }
   const [lo, hi] = extent(data.flatMap((trace) => trace.y));
@@ -244,7 +263,7 @@ export function breakawayFigure(frame, state, sim = null, lugre = null, band = n
       line: { width: 0 }, hoverinfo: "skip",
     });
   }
-  const layout = baseLayout("breakaway", {
+  const layout = baseLayout("breakaway", state, {
     legend: { orientation: "h", x: 0, y: -0.2, yanchor: "top" },
     margin: { l: 58, r: 12, t: 8, b: 80 },
   });
@@ -254,7 +273,7 @@ export function breakawayFigure(frame, state, sim = null, lugre = null, band = n
 /** The figures of one redraw (all four, or those in `ids`), keyed by plot id. */
 export function figures(frame, state, sim, lugre, ids = PLOT_IDS, band = null) {
   const build = {
-    stribeck: () => stribeckFigure(frame),
+    stribeck: () => stribeckFigure(frame, state),
     hysteresis: () => hysteresisFigure(frame, state),
     phase: () => phaseFigure(frame, state),
     breakaway: () => breakawayFigure(frame, state, sim, lugre, band),

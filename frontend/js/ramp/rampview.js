@@ -3,7 +3,10 @@
 // its plot, the simulated path over the phase family, the sentence that explains the
 // numbers, and Play, which moves a time cursor through both plots.
 
-import { explainBreakaway, rampBody, rampFigure, simulationPhaseTrace } from "./ramp.js";
+import { captionOf } from "../page/controls.js";
+import {
+  explainBreakaway, rampBody, rampFigure, simulationPhaseTrace,
+} from "./ramp.js";
 import { rampExperiment } from "../models/rampmodel.js";
 import { $, app } from "../page/store.js";
 import { drawView, viewResult } from "../page/viewrequests.js";
@@ -15,7 +18,7 @@ const PLAY_SECONDS = 4;
 registerView({
   id: "ramp",
   source: "request",
-  axes: { x: "t [s]", y: "u, F [N]" },
+  caption: captionOf(["Fc", "Fs", "V", "delta", "sigma", "s", "z_ba", "k", "m"], { fHat: true }),
   request: { url: "/api/ramp", body: rampBody, debounceMs: RAMP_DEBOUNCE_MS, local: rampExperiment },
   redraws: ["phase"],
   figure: ({ state, result }) => rampFigure(result, state, app.cursor),
@@ -33,7 +36,7 @@ registerView({
 registerOverlay((figures, { state }) => {
   const ramp = figures.phase && viewResult("ramp", state);
   if (!ramp) return;
-  const trace = simulationPhaseTrace(ramp.value, app.cursor);
+  const trace = simulationPhaseTrace(ramp.value, state, app.cursor);
   if (ramp.stale) trace.opacity = 0.35;
   figures.phase = { ...figures.phase, data: [...figures.phase.data, trace] };
 });

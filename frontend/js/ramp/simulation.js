@@ -4,7 +4,9 @@
 
 import { postJSON } from "../page/api.js";
 import { onFrameDrawn, onStateLeft, redraw } from "../page/render.js";
-import { $, app, commit, updateSimBusy } from "../page/store.js";
+import {
+  $, app, commit, setToggle, shownState, updateSimBusy,
+} from "../page/store.js";
 import { simulateBody } from "../page/state.js";
 
 const SIM_DEBOUNCE_MS = 350;
@@ -14,7 +16,7 @@ function simRates(frame = app.frame) {
   return frame ? frame.phase.curves.slice(0, -1).map((curve) => curve.k) : [];
 }
 
-function simKey(state = app.state, frame = app.frame) {
+function simKey(state = shownState(), frame = app.frame) {
   return JSON.stringify(simulateBody(state, simRates(frame)));
 }
 
@@ -35,7 +37,7 @@ export function cancelSim() {
  *  points shown are for it already or the automatic simulation is off. */
 export function scheduleSim(now = false) {
   if (!app.frame || (!app.state.sim && !now)
-      || (!now && app.sim && !simStale(app.state, app.frame))) {
+      || (!now && app.sim && !simStale(shownState(), app.frame))) {
     updateSimBusy();
     return;
   }
@@ -55,7 +57,7 @@ async function runSim() {
   status.textContent = `Simulating ${rates.length} ramps…`;
   const started = performance.now();
   try {
-    const result = await postJSON("/api/simulate", simulateBody(app.state, rates), controller.signal);
+    const result = await postJSON("/api/simulate", simulateBody(shownState(), rates), controller.signal);
     if (controller !== app.simController) return;
     app.sim = { ...result, key };
     const missing = result.u_ba.filter((value) => value === null).length;
@@ -101,12 +103,12 @@ onFrameDrawn(() => {
 /** Wire the simulation's own controls. */
 export function wireSimulation() {
   $("sim").addEventListener("change", () => {
-    app.state.sim = $("sim").checked;
+    setToggle("sim", $("sim").checked);
     commit();
     scheduleSim();
   });
   $("lugre").addEventListener("change", () => {
-    app.state.lugre = $("lugre").checked;
+    setToggle("lugre", $("lugre").checked);
     commit();
     redraw(["breakaway"]);
     ensureLugre();

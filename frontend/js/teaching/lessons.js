@@ -3,12 +3,14 @@
 // functions, laid over the model plots as overlays of the view registry.
 
 import { postJSON } from "../page/api.js";
-import { paramSpec } from "../page/controls.js";
+import { controlLabel, paramSpec } from "../page/controls.js";
 import { PLOT_IDS, figures } from "../plots/plots.js";
-import { showPlotInView } from "../page/phone.js";
+import { onPhone, showPlotInView } from "../page/phone.js";
 import { redraw } from "../page/render.js";
 import { exploreBody, partDefaults } from "../page/state.js";
-import { $, app, whenIdle } from "../page/store.js";
+import {
+  $, app, shownState, whenIdle,
+} from "../page/store.js";
 import {
   TOUR, pinnedTraces, sweepTraces, sweepValues, sweptPlots, tourState, withTraces,
 } from "./teach.js";
@@ -42,7 +44,7 @@ registerOverlay((figs) => {
 
 function pinCurves() {
   if (!app.frame) return;
-  const figs = figures(app.frame, app.state, null, null);
+  const figs = figures(app.frame, shownState(), null, null);
   app.pinned = Object.fromEntries(PLOT_IDS.map((id) => [id, pinnedTraces(figs[id])]));
   $("compare-clear").disabled = false;
   redraw();
@@ -69,22 +71,24 @@ async function runSweep(name = $("sweep-param").value) {
   const spec = paramSpec(name);
   if (!spec || !app.frame || asked !== sweeps) return;
   $("sweep-param").value = name;
-  const values = sweepValues(name, app.state);
-  $("sweep-status").textContent = `Sweeping ${spec.label} over ${values.join(", ")}…`;
+  const state = shownState();
+  const values = sweepValues(name, state);
+  const named = controlLabel(spec, state);
+  $("sweep-status").textContent = `Sweeping ${named} over ${values.join(", ")}…`;
   try {
     const frames = await Promise.all(values.map((value) => postJSON("/api/explore",
-      exploreBody({ ...app.state, [name]: value }))));
+      exploreBody({ ...state, [name]: value }))));
     if (asked !== sweeps) return;
-    const sweep = { name, label: spec.label.split(" [")[0], values, frames };
-    sweep.plots = sweptPlots(sweep, app.state, app.frame);
+    const sweep = { name, label: spec.named, values, frames };
+    sweep.plots = sweptPlots(sweep, state, app.frame);
     app.sweep = sweep;
     $("sweep-clear").disabled = false;
     const unmoved = Object.keys(PLOT_NAMES).filter((id) => !sweep.plots.includes(id));
     $("sweep-status").textContent = sweep.plots.length
-      ? `${values.length} curves of ${spec.label} on ${names(sweep.plots.map((id) => PLOT_NAMES[id]))}`
+      ? `${values.length} curves of ${named} on ${names(sweep.plots.map((id) => PLOT_NAMES[id]))}`
         + `${unmoved.length ? `; ${sweep.label} leaves ${names(unmoved.map((id) => PLOT_NAMES[id]))} `
           + `as ${unmoved.length > 1 ? "they are" : "it is"}` : ""}.`
-      : `${spec.label} changes none of the model's curves (only the simulation).`;
+      : `${named} changes none of the model's curves (only the simulation).`;
     await redraw();
   } catch (error) {
     $("sweep-status").textContent = `The sweep failed: ${error.message}`;
@@ -99,6 +103,22 @@ function clearSweep() {
   redraw();
 }
 
+/** Bring the card of plot `id` into view: on a phone into the strip at the top; else the
+ *  page scrolls to it when it is not all on the screen (the tour's text stays in view
+ *  in the controls beside it). */
+function showCard(id) {
+  if (onPhone()) {
+    showPlotInView(id);
+    return;
+  }
+  const card = $(`card-${id}`);
+  const box = card.getBoundingClientRect();
+  if (box.top >= 0 && box.bottom <= window.innerHeight) return;
+  const still = window.matchMedia("(prefers-reduced-motion: reduce)").matches;
+  card.scrollIntoView({ block: box.height <= window.innerHeight ? "nearest" : "start",
+    behavior: still ? "instant" : "smooth" });
+}
+
 /** Wire the tools; `setState(state)` moves the explorer (the tour's steps). */
 export function wireLessons(setState) {
   // each step sets its state, brings its plot into view (on a phone) and sweeps the
@@ -106,11 +126,12 @@ export function wireLessons(setState) {
   const showTourStep = (index) => {
     app.tour = index;
     const step = TOUR[index];
-    $("tour-step").textContent = `Step ${index + 1} of ${TOUR.length}: ${step.text}`;
+    const state = tourState(index, app.presets, app.state, partDefaults);
+    $("tour-step").textContent = `Step ${index + 1} of ${TOUR.length}: ${step.text(state)}`;
     $("tour-next").disabled = index === TOUR.length - 1;
     $("tour-start").textContent = "Restart the tour";
-    setState(tourState(index, app.presets, app.state, partDefaults));
-    showPlotInView(step.plot);
+    setState(state);
+    showCard(step.plot);
     if (step.sweep) runSweep(step.sweep);
     else if (app.sweep) clearSweep();
   };

@@ -2,6 +2,7 @@
 // guided tour through the note's figures. lessons.js owns the state and the requests.
 
 import { SWEEP } from "../plots/palette.js";
+import { hover, quantity } from "../page/units.js";
 
 /** Faded copies of a figure's traces, to keep as a reference while the sliders move. */
 export function pinnedTraces(figure) {
@@ -30,7 +31,7 @@ export function withTraces(figure, traces) {
  * count + 1 evenly spaced over the sweep's range (a factor 4 around the value for the
  * log-scale parameters, halved to doubled; ±1 for δ; 0.5 … 0.99 for z*), then the one
  * equal to the current value dropped, or else the one farthest from it (the last when
- * two are). Fc stays at or below Fs and Fs at or above Fc (MODEL.md §1).
+ * two are). Fc stays at or below Fs and Fs at or above Fc (the model needs Fs ≥ Fc).
  */
 export function sweepValues(name, state, count = 5) {
   const value = Number(state[name]);
@@ -63,12 +64,12 @@ function sameCurve(a, b) {
 }
 
 /** The curve of `frame` that each plot's sweep shows: Fss(v), the loop, the phase curve
- *  of the current k, the break-away curve of the chosen F̂. */
+ *  of the current k, the break-away curve of the chosen F̂; its axes [name, linear unit]. */
 const SWEPT = {
-  stribeck: (frame) => ({ x: frame.stribeck.v, y: frame.stribeck.F, unit: "v = %{x:.3g} m/s<br>Fss = %{y:.4g} N" }),
-  hysteresis: (frame) => ({ x: frame.hysteresis.x, y: frame.hysteresis.F, unit: "x = %{x:.3g} m<br>F = %{y:.3g} N" }),
-  phase: (frame) => ({ x: frame.phase.z, y: frame.phase.curves[frame.phase.curves.length - 1].v, unit: "z = %{x:.3f}<br>ẋ = %{y:.3g} m/s" }),
-  breakaway: (frame, state) => ({ x: frame.breakaway.k, y: frame.breakaway[state.F_hat], unit: "k = %{x:.3g} N/s<br>F_ba = %{y:.4g} N" }),
+  stribeck: (frame) => ({ x: frame.stribeck.v, y: frame.stribeck.F, axes: [["v", "m/s"], ["Fss", "N"]] }),
+  hysteresis: (frame) => ({ x: frame.hysteresis.x, y: frame.hysteresis.F, axes: [["x", "m"], ["F", "N"]] }),
+  phase: (frame) => ({ x: frame.phase.z, y: frame.phase.curves[frame.phase.curves.length - 1].v, axes: [["z", ""], ["ẋ", "m/s"]] }),
+  breakaway: (frame, state) => ({ x: frame.breakaway.k, y: frame.breakaway[state.F_hat], axes: [["k", "N/s"], ["F_ba", "N"]] }),
 };
 
 /**
@@ -93,9 +94,11 @@ export function sweepTraces(sweep, state, label) {
     const curves = sweep.frames.map((swept) => SWEPT[plot](swept, state));
     out[plot] = curves.map((curve, i) => {
       const name = `${label} = ${sweep.values[i]}`;
+      const [[x, xUnit], [y, yUnit]] = curve.axes;
+      const hovered = `${hover(x, "x", ".3g", xUnit, state)}<br>${hover(y, "y", ".4g", yUnit, state)}`;
       return { type: "scatter", mode: "lines", name, legendgroup: `sweep-${i}`, x: curve.x, y: curve.y,
         line: { color: SWEEP[i % SWEEP.length], width: 1.6 },
-        hovertemplate: `${name}<br>${curve.unit}<extra></extra>` };
+        hovertemplate: `${name}<br>${hovered}<extra></extra>` };
     });
   }
   return out;
@@ -103,40 +106,40 @@ export function sweepTraces(sweep, state, label) {
 
 /**
  * The guided tour through the note's figures: each step sets parameters (a preset and
- * overrides), says what to look at, names the plot it is about and may sweep a
- * parameter over it.
+ * overrides), says what to look at (in the state's units: `text(state)`), names the
+ * plot it is about and may sweep a parameter over it.
  */
 export const TOUR = [
   { preset: "fig5", set: { k: 1 }, plot: "stribeck", sweep: "V",
-    text: "Fig. 4, the Stribeck curve (E2): friction falls from the stiction level Fs = 1.5 "
-      + "to the Coulomb level Fc = 1 as the sliding speed grows. V sets where it falls: the "
-      + "thin curves are the same model at five other V." },
+    text: (state) => `Fig. 4, the Stribeck curve (E2): friction falls from the stiction level Fs = `
+      + `${quantity(1.5, "N", state)} to the Coulomb level Fc = ${quantity(1, "N", state)} as the sliding `
+      + "speed grows. V sets where it falls: the thin curves are the same model at five other V." },
   { preset: "fig5", set: { k: 1, s: 1 }, plot: "hysteresis", sweep: "s",
-    text: "Fig. 1, presliding (E4–E6′): after each reversal the force builds up along "
+    text: () => "Fig. 1, presliding (E4–E6′): after each reversal the force builds up along "
       + "f(z) = z(1 − ln z) over the presliding distance 1/s; every reversal starts a new "
       + "branch, so inner loops nest inside the outer one. The thin loops are five other s." },
   { preset: "fig5", set: { k: 0.01 }, plot: "phase",
-    text: "Fig. 3, the phase family (E12): ẋ(z) = −k/(s·F̂·ln z). At a slow ramp "
-      + "(k = 0.01 N/s) the presliding velocity at z* stays tiny." },
+    text: (state) => "Fig. 3, the phase family (E12): ẋ(z) = −k/(s·F̂·ln z). At a slow ramp "
+      + `(k = ${quantity(0.01, "N/s", state)}) the presliding velocity at z* stays tiny.` },
   { preset: "fig5", set: { k: 20 }, plot: "phase",
-    text: "Fig. 3 again at k = 20 N/s: the curve rises by three decades. A fast ramp reaches "
-      + "z* at a high velocity, where the Stribeck curve has already fallen." },
+    text: (state) => `Fig. 3 again at k = ${quantity(20, "N/s", state)}: the curve rises by three `
+      + "decades. A fast ramp reaches z* at a high velocity, where the Stribeck curve has already fallen." },
   { preset: "fig5", set: { k: 4 }, plot: "breakaway",
-    text: "Fig. 5, the break-away curve (E13): F_ba(k) = Fss(ẋ(z*)) falls from Fs towards "
-      + "Fc as k grows. The four F̂ choices differ most around k ≈ 4 N/s." },
+    text: (state) => "Fig. 5, the break-away curve (E13): F_ba(k) = Fss(ẋ(z*)) falls from Fs towards "
+      + `Fc as k grows. The four F̂ choices differ most around k ≈ ${quantity(4, "N/s", state)}.` },
   { preset: "fig5", set: { k: 4 }, plot: "ramp",
-    text: "The ramp experiment below simulates m·ẍ + F = k·t. Its break-away force rises "
+    text: () => "The ramp experiment below simulates m·ẍ + F = k·t. Its break-away force rises "
       + "with k while E13 falls: E13 drops the ∂F/∂ẋ·ẍ term and the inertia. Press Play." },
   { preset: "viscous", set: { k: 10 }, plot: "breakaway",
-    text: "With viscous friction σ the break-away curve dips and then rises again at high "
+    text: () => "With viscous friction σ the break-away curve dips and then rises again at high "
       + "rates: σ·ẋ* grows linearly with k." },
   { preset: "fig5", set: { k: 4 }, reset: "loop", plot: "loop",
-    text: "The control loop (MODEL.md §5b): a PID position loop on the same friction hunts. "
-      + "While the body sticks, the integral term ramps u as in the ramp experiment until it "
-      + "breaks away (✕; E13 ◆ says where); sliding, friction falls from Fs towards Fc and the "
-      + "body overshoots. The sentence under the plots gives the numbers." },
+    text: () => "The control loop: a PID position loop on the same friction hunts. While the body "
+      + "sticks, the integral term ramps u as in the ramp experiment until it breaks away (✕; "
+      + "E13 ◆ says where); sliding, friction falls from Fs towards Fc and the body overshoots. "
+      + "The sentence under the plots gives the numbers." },
   { preset: "no-stribeck", set: { k: 4 }, reset: "loop", plot: "loop",
-    text: "The same loop with Fs = Fc: friction no longer falls once the body slides, so "
+    text: () => "The same loop with Fs = Fc: friction no longer falls once the body slides, so "
       + "nothing overshoots and the loop settles. Move Ki and Kd, try a sine and compensation: "
       + "the sentence says what each changes." },
 ];
