@@ -54,3 +54,31 @@ def test_the_theme_switch_and_the_links_back_to_the_explorer(context, guide_url)
     page.get_by_label("Fs [N]", exact=True).wait_for()
     page.close()
     assert problems == []
+
+
+def test_the_explorers_links_into_the_guide_lead_to_real_sections(context, guide_url,
+                                                                   built_docs):
+    html, _ = built_docs
+    problems: list[str] = []
+    page = _page(context, problems)
+    page.goto(guide_url.removesuffix("/guide") + "/")
+    page.evaluate("window.breakaway.ready()")
+    links = page.eval_on_selector_all('a[href^="/guide/"]',
+                                      "links => links.map((a) => a.getAttribute('href'))")
+    assert "/guide/" in links  # the header
+    glossary = page.eval_on_selector_all('#glossary a[href^="/guide/"]', "links => links.length")
+    assert glossary >= 8
+    tour = page.evaluate("import('/js/teaching/teach.js').then((m) => "
+                         "m.TOUR.map((step) => '/guide/' + m.TOUR_DOCS[step.plot].href))")
+    for href in set(links + tour):
+        path, _, anchor = href.removeprefix("/guide/").partition("#")
+        target = html / (path or "index.html")
+        assert target.is_file(), href
+        assert not anchor or f'id="{anchor}"' in target.read_text(encoding="utf-8"), href
+    page.get_by_role("button", name="Start the tour").click()
+    more = page.locator("#tour-doc a")
+    assert more.inner_text() == "More in the documentation: the Stribeck curve (E2)"
+    more.click()
+    page.wait_for_url("**/guide/model.html#steady-state-the-stribeck-curve-e2")
+    page.close()
+    assert problems == []

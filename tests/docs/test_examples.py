@@ -13,7 +13,7 @@ FENCE = re.compile(r"^```(\S*)[^\n]*\n(.*?)^```", re.M | re.S)
 #: Run by the suite.
 RUN = {"python", "console"}
 #: Not code: equations, shapes, output; a proxy's configuration; the docs' directives.
-NOT_CODE = {"text", "nginx", "{eval-rst}", "{toctree}", "{include}"}
+NOT_CODE = {"text", "json", "nginx", "{eval-rst}", "{toctree}", "{include}"}
 #: ``sh`` holds only commands that start a server, the whole suite, the docs build or
 #: Docker: what a test run cannot run inside itself.
 SERVING = ("scripts/run", "scripts/test", "scripts/docs", "breakaway serve", "docker ")

@@ -12,7 +12,7 @@ import {
   $, app, shownState, whenIdle,
 } from "../page/store.js";
 import {
-  TOUR, pinnedTraces, sweepTraces, sweepValues, sweptPlots, tourState, withTraces,
+  TOUR, TOUR_DOCS, pinnedTraces, sweepTraces, sweepValues, sweptPlots, tourState, withTraces,
 } from "./teach.js";
 import { registerOverlay } from "../page/views.js";
 
@@ -128,6 +128,11 @@ export function wireLessons(setState) {
     const step = TOUR[index];
     const state = tourState(index, app.presets, app.state, partDefaults);
     $("tour-step").textContent = `Step ${index + 1} of ${TOUR.length}: ${step.text(state)}`;
+    const doc = TOUR_DOCS[step.plot];
+    const link = $("tour-doc").querySelector("a");
+    link.href = `/guide/${doc.href}`;
+    link.textContent = `More in the documentation: ${doc.title}`;
+    $("tour-doc").hidden = false;
     $("tour-next").disabled = index === TOUR.length - 1;
     $("tour-start").textContent = "Restart the tour";
     setState(state);

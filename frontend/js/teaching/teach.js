@@ -104,6 +104,21 @@ export function sweepTraces(sweep, state, label) {
   return out;
 }
 
+/** Where the documentation (served under /guide/) explains what each kind of tour step
+ *  shows: a section's address and its title. */
+export const TOUR_DOCS = {
+  stribeck: { href: "model.html#steady-state-the-stribeck-curve-e2",
+    title: "the Stribeck curve (E2)" },
+  hysteresis: { href: "model.html#presliding-with-reversal-memory-e3e6",
+    title: "presliding with reversal memory (E3–E6′)" },
+  phase: { href: "model.html#the-break-away-curve-e7e13", title: "the break-away curve (E7–E13)" },
+  breakaway: { href: "model.html#the-break-away-curve-e7e13",
+    title: "the break-away curve (E7–E13)" },
+  ramp: { href: "ramp.html#where-the-simulation-and-e13-agree-and-where-they-do-not",
+    title: "the ramp experiment, simulated" },
+  loop: { href: "control-loop.html#stick-phases-and-hunting", title: "friction in a control loop" },
+};
+
 /**
  * The guided tour through the note's figures: each step sets parameters (a preset and
  * overrides), says what to look at (in the state's units: `text(state)`), names the
