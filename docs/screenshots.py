@@ -50,6 +50,8 @@ def explorer(browser, url: str) -> None:
     settle(page)
     page.get_by_role("button", name="Start the tour").click()
     settle(page)
+    # the step's text and its link into the documentation, with the plots beside them
+    page.locator("#tour-doc").scroll_into_view_if_needed()
     page.screenshot(path=IMAGES / "explorer-tour.png")
     page.close()
 
@@ -68,13 +70,13 @@ def data_panel(browser, url: str) -> None:
     page.goto(f"{url}/")
     settle(page)
     panel = page.locator("#data-panel")
-    page.get_by_label("Sample").select_option("damper")
+    page.get_by_label("Sample", exact=True).select_option("damper")
     page.get_by_role("button", name="Fit", exact=True).click()
     page.evaluate("window.breakaway.fitReady()")
     panel.scroll_into_view_if_needed()
     page.locator("#fit-results").screenshot(path=IMAGES / "data-panel-results.png")
 
-    page.get_by_label("Sample").select_option("mystery-a")
+    page.get_by_label("Sample", exact=True).select_option("mystery-a")
     page.get_by_role("button", name="Fit", exact=True).click()
     page.evaluate("window.breakaway.fitReady()")
     panel.screenshot(path=IMAGES / "data-panel-quiz.png")

@@ -1,6 +1,7 @@
 """The documentation as `breakaway serve` serves it under /guide/: its pages run their
 scripts under the server's policy (each page's inline scripts allowed by hash), so the
-search and the light/dark switch work, with no console error and nothing from outside."""
+search and the light/dark switch work, with no console error and nothing from outside;
+and every link of the explorer into the guide leads to a real section."""
 
 from __future__ import annotations
 
