@@ -72,6 +72,12 @@ class Expectation:
     force_max, speed_max : float
         The largest |force| and |speed| of the file: no level or Stribeck velocity is
         determined above them (10 % margin).
+    input_floor : bool
+        The report must carry ``input_floor`` (MODEL.md §8: the share of the prediction
+        error that x's resolution sets), a finite number ≥ 0.
+    beyond_speed : bool
+        A Stribeck velocity the report gives above the fastest speed (10 % margin) must
+        carry a ``beyond-data`` warning on V (MODEL.md §7b, 5).
     """
 
     required: frozenset = frozenset()
@@ -87,6 +93,8 @@ class Expectation:
     noise: tuple | None = None
     force_max: float = math.inf
     speed_max: float = math.inf
+    input_floor: bool = False
+    beyond_speed: bool = False
 
     def summary(self) -> str:
         """One line: the effects and warnings expected."""
@@ -160,6 +168,15 @@ def failures(report: dict, expect: Expectation) -> list[str]:
         floor = report["noise_floor"]
         if not value / factor <= floor <= value * factor:
             out.append(f"noise floor {floor:.3g}, expected {value:.3g} within {factor:g}x")
+    if expect.input_floor:
+        value = report.get("input_floor")
+        if not (isinstance(value, (int, float)) and math.isfinite(value) and value >= 0):
+            out.append(f"input_floor is {value!r}, expected a number ≥ 0")
+    if expect.beyond_speed:
+        V = final["params"].get("V")
+        if V is not None and V > 1.1 * expect.speed_max and not has_warning(report, "beyond-data", "V"):
+            out.append(f"V = {V:.4g} beyond the fastest speed {expect.speed_max:.4g} "
+                       f"without a beyond-data warning")
     out += outside_data(final, expect)
     return out
 
@@ -179,3 +196,16 @@ def outside_data(final: dict, expect: Expectation) -> list[str]:
     if final["determined"].get("V") and V is not None and V > 1.1 * expect.speed_max:
         out.append(f"V = {V:.4g} determined above the largest speed {expect.speed_max:.4g}")
     return out
+
+
+def verdict_params(families, seeds, known_gaps: dict):
+    """pytest parameters ``(family, seed)`` for every family and each of its
+    ``seeds(family)``, marked as a strict expected failure where ``known_gaps`` gives
+    the reason (so that a change that mends one fails until its entry is removed)."""
+    import pytest
+
+    for family in families:
+        for seed in seeds(family):
+            gap = known_gaps.get((family, seed))
+            marks = [pytest.mark.xfail(strict=True, reason=gap)] if gap else []
+            yield pytest.param(family, seed, marks=marks, id=f"{family}-{seed}")

@@ -4,8 +4,9 @@ friction and reversal memory, and what a real recording does to it afterwards (a
 encoder's counts, a DAC's steps, printed decimals).
 
 The plant is ``m·ẍ = u − F``. F follows the reversal-memory law of MODEL.md §3
-(E6'), ``F = F_r + (d·g(v) − F_r)·f(s·|x − x_r|)``, with g of (E2) per direction (so
-an asymmetric axis is one call) and one of two presliding shapes:
+(E6'), ``F = F_r + (d·g(v) + σ·v − F_r)·f(s·|x − x_r|)``, with g of (E2) per direction
+(so an asymmetric axis is one call), an optional viscous σ (a geared joint's oil) and
+one of two presliding shapes:
 
 - ``SHAPE_E4``: the note's f(z) = z·(1 − ln z) (:func:`breakaway.presliding.shape_scalar`),
   made linear below z = :data:`E4_LINEAR_BELOW` so that the stiffness after a reversal
@@ -41,25 +42,31 @@ SHAPE_E4, SHAPE_EXPONENTIAL = 0, 1
 E4_LINEAR_BELOW = 1e-4
 
 # the friction parameter vector
-P_FC, P_FS, P_FC_NEG, P_FS_NEG, P_V, P_DELTA, P_S, P_SHAPE, P_DAMPING = range(9)
+P_FC, P_FS, P_FC_NEG, P_FS_NEG, P_V, P_DELTA, P_S, P_SHAPE, P_DAMPING, P_SIGMA, P_ZETA = range(11)
 # the state vector: position, velocity, x_r, F_r, direction, last friction
 S_X, S_V, S_XR, S_FR, S_D, S_F = range(6)
 
 
-def friction_params(Fc, Fs, V, delta, s, mass, shape=SHAPE_E4, Fc_neg=None, Fs_neg=None):
-    """The parameter vector of :func:`advance` (levels per direction; SI or rotary).
+def friction_params(Fc, Fs, V, delta, s, mass, shape=SHAPE_E4, Fc_neg=None, Fs_neg=None,
+                    sigma=0.0, damping_ratio=1.0):
+    """The parameter vector of :func:`advance` (levels per direction, the viscous
+    coefficient ``sigma``; SI or rotary).
 
     The presliding damping is critical for the mass on the stiffest branch: one that
     starts at a reversal from one level to the other, ``2·Fs·s`` times the shape's
     slope at its start. A reversal inside a branch then never rings into another
     reversal (each would start a new branch, MODEL.md §3, and move the record off the
-    law it is meant to follow).
+    law it is meant to follow). A ``damping_ratio`` below 1 keeps the damping force (a
+    term outside the library) small where a fast body crosses presliding, at the cost
+    of ringing reversals far below an encoder's count; the sub-steps stay those of the
+    critical damping.
     """
     Fc_neg = Fc if Fc_neg is None else Fc_neg
     Fs_neg = Fs if Fs_neg is None else Fs_neg
     slope = 3.0 if shape == SHAPE_EXPONENTIAL else 1.0 - math.log(E4_LINEAR_BELOW)
     damping = 2.0 * math.sqrt(2.0 * max(Fs, Fs_neg) * s * slope * mass)
-    return np.array([Fc, Fs, Fc_neg, Fs_neg, V, delta, s, shape, damping], dtype=float)
+    return np.array([Fc, Fs, Fc_neg, Fs_neg, V, delta, s, shape, damping, sigma, damping_ratio],
+                    dtype=float)
 
 
 def rest_state():
@@ -81,12 +88,12 @@ def friction(state, p):
     """The friction force [N]: (E6') on the current branch plus the presliding damping."""
     z = p[P_S] * abs(state[S_X] - state[S_XR])
     shape = _shape(z, int(p[P_SHAPE]))
-    return elastic(state, p, shape) + p[P_DAMPING] * state[S_V] * (1.0 - shape)
+    return elastic(state, p, shape) + p[P_DAMPING] * p[P_ZETA] * state[S_V] * (1.0 - shape)
 
 
 @njit(cache=True)
 def elastic(state, p, shape):
-    """(E6') at the state with the branch's shape value f(z)."""
+    """(E6') at the state with the branch's shape value f(z) (σ·v inside the target)."""
     d = state[S_D]
     v = state[S_V]
     if d > 0:
@@ -94,7 +101,7 @@ def elastic(state, p, shape):
     else:
         Fc, Fs = p[P_FC_NEG], p[P_FS_NEG]
     g = Fc + (Fs - Fc) * math.exp(-(abs(v) / p[P_V]) ** p[P_DELTA])
-    return state[S_FR] + (d * g - state[S_FR]) * shape
+    return state[S_FR] + (d * g + p[P_SIGMA] * v - state[S_FR]) * shape
 
 
 @njit(cache=True)
@@ -124,8 +131,10 @@ def advance(state, p, m, force, drive0, drive1, stiffness, duration, substeps):
 
 def substeps_for(p, m, duration, at_least=1):
     """Sub-steps of a sample of ``duration`` [s] that keep the explicit step stable on
-    the stiffest, critically damped presliding branch: h·c/m ≤ 0.4 (h·ω0 ≤ 0.2)."""
-    return max(int(at_least), math.ceil(duration * p[P_DAMPING] / (0.4 * m)))
+    the stiffest, critically damped presliding branch, and under the viscous drag:
+    h·c/m ≤ 0.4 (h·ω0 ≤ 0.2)."""
+    damping = max(p[P_DAMPING], p[P_SIGMA])
+    return max(int(at_least), math.ceil(duration * damping / (0.4 * m)))
 
 
 def run_open_loop(t, force, p, m, substeps, drive=None, stiffness=0.0):

@@ -18,7 +18,7 @@ from breakaway.identify import identify, parse_csv
 from breakaway.presliding import motion_direction, presliding_force_from_target
 
 from . import machines, machines_classic, plant
-from .expectations import Close, Expectation, failures
+from .expectations import Close, Expectation, failures, verdict_params
 
 FAMILIES = machines.families()
 SEEDS = (0, 1)
@@ -30,15 +30,8 @@ KNOWN_GAPS = {
 }
 
 
-def _cases():
-    for family in FAMILIES:
-        for seed in SEEDS:
-            gap = KNOWN_GAPS.get((family, seed))
-            marks = [pytest.mark.xfail(strict=True, reason=gap)] if gap else []
-            yield pytest.param(family, seed, marks=marks, id=f"{family}-{seed}")
-
-
-@pytest.mark.parametrize("family,seed", list(_cases()))
+@pytest.mark.parametrize("family,seed", list(verdict_params(FAMILIES, lambda _: SEEDS,
+                                                            KNOWN_GAPS)))
 def test_the_report_says_what_the_recording_holds(family, seed):
     recording = FAMILIES[family](seed)
     report = identify(parse_csv(recording.csv))
