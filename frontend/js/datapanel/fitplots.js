@@ -137,21 +137,29 @@ export function modelFigure(series, kind, revision) {
 
 /** Direction changes of x a time window shows: three full cycles. */
 const WINDOW_REVERSALS = 6;
+/** A turn counts once x has come back this share of its whole range (a measured x
+ *  jitters: its small wiggles are no cycles). */
+const TURN_SHARE = 0.05;
 
 /** [t0, t1]: the start of a time series over its first WINDOW_REVERSALS reversals of x
  *  (at least a hundredth of the record; all of it when it turns fewer times). */
 export function timeWindow(t, x) {
   const end = t[t.length - 1];
+  const [lo, hi] = [Math.min(...x), Math.max(...x)];
+  const turn = TURN_SHARE * (hi - lo);
+  // taken as rising at first: a record that starts falling "turns" from its first
+  // sample, which is no reversal
   let turns = 0;
-  let direction = 0;
+  let rising = true;
+  let extreme = x[0];
   for (let i = 1; i < x.length; i += 1) {
-    const step = Math.sign(x[i] - x[i - 1]);
-    if (!step) continue;
-    if (direction && step !== direction) {
-      turns += 1;
-      if (turns > WINDOW_REVERSALS) return [t[0], Math.max(t[i], t[0] + 0.01 * (end - t[0]))];
-    }
-    direction = step;
+    if (rising ? x[i] > extreme : x[i] < extreme) extreme = x[i];
+    if ((rising ? extreme - x[i] : x[i] - extreme) < turn) continue;
+    // x has turned: from a maximum when it rose, from a minimum when it fell
+    if (!(rising && extreme === x[0])) turns += 1;
+    if (turns >= WINDOW_REVERSALS) return [t[0], Math.max(t[i], t[0] + 0.01 * (end - t[0]))];
+    rising = !rising;
+    extreme = x[i];
   }
   return [t[0], end];
 }

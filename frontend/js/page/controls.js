@@ -160,6 +160,7 @@ export function captionOf(names, { fHat = false } = {}) {
 }
 
 const built = []; // the specs of every control built, relabelled when the units change
+const elements = new Map(); // parameter name -> {box, range, error, wrap} of its control
 
 /** One labelled slider + number box for `spec` (the friction's and the loop's alike),
  *  with its help and the place for its error. */
@@ -212,6 +213,7 @@ export function buildControl(spec) {
 
   row.append(rangeLabel, range, box);
   wrap.append(label, row, help, error);
+  elements.set(spec.name, { box, range, error, wrap });
   return wrap;
 }
 
@@ -237,7 +239,7 @@ function relabel(state) {
   labelledIn = unitsOf(state);
   for (const spec of built) {
     const text = controlLabel(spec, state);
-    const [box, range] = [document.getElementById(spec.name), document.getElementById(`${spec.name}-range`)];
+    const { box, range } = elements.get(spec.name);
     if (box?.labels[0]) box.labels[0].textContent = text;
     if (range?.labels[0]) range.labels[0].textContent = `${text} slider`;
     for (const element of document.querySelectorAll(`[data-label-of="${spec.name}"]`)) element.textContent = text;
@@ -248,8 +250,7 @@ function relabel(state) {
 export function writeControls(state, { except = null } = {}) {
   relabel(state);
   for (const spec of PARAMS) {
-    const box = document.getElementById(spec.name);
-    const range = document.getElementById(`${spec.name}-range`);
+    const { box, range } = elements.get(spec.name);
     const raw = state[spec.name];
     // at most 6 significant digits in the box (the state keeps the full value)
     if (box !== except) box.value = typeof raw === "number" ? String(roundSignificant(raw, 6)) : String(raw ?? "");
@@ -269,14 +270,12 @@ export function writeControls(state, { except = null } = {}) {
 export function showErrors(errors) {
   for (const spec of PARAMS) {
     const message = errors[spec.name];
-    const box = document.getElementById(spec.name);
-    const range = document.getElementById(`${spec.name}-range`);
-    const error = document.getElementById(`${spec.name}-error`);
+    const { box, range, error, wrap } = elements.get(spec.name);
     setText(error, message ?? "");
     setHidden(error, !message);
     setAttr(box, "aria-invalid", message ? "true" : "false");
     setAttr(range, "aria-invalid", message ? "true" : "false");
-    box.closest(".control").classList.toggle("invalid", Boolean(message));
+    wrap.classList.toggle("invalid", Boolean(message));
   }
 }
 

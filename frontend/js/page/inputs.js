@@ -8,7 +8,9 @@ import {
 import { onSchemeChange, setPresentation } from "../plots/draw.js";
 import { addExportButtons, wireExports } from "../plots/export.js";
 import { redraw, refresh, settleNow } from "./render.js";
-import { defaultState, fromQuery, presetState } from "./state.js";
+import {
+  defaultState, fromQuery, movesFrame, presetState,
+} from "./state.js";
 import {
   $, app, commit, setToggle, shownState,
 } from "./store.js";
@@ -83,8 +85,11 @@ export function wireSliderKeys(range, moved, ahead) {
   });
 }
 
-/** The states one key press away on `spec`'s slider, on either side. */
+/** The states one key press away on `spec`'s slider, on either side, when a view with a
+ *  request of its own would draw them (none for a slider that moves the model's
+ *  curves, unless a view is drawn live at every change: the loop on the screen). */
 function neighbours(spec, range) {
+  if (movesFrame(spec.name) && !requestViews().some((view) => view.request.live?.(app.state))) return [];
   const out = [];
   for (const step of [-1, 1]) {
     const position = Number(range.value) + step;

@@ -90,12 +90,17 @@ export function matchingPreset(state, presets) {
   return "";
 }
 
+/** Whether parameter `name` moves the quasi-static frame: all but the mass m, which
+ *  only the ramp experiment uses (moving m asks for no new frame). */
+export function movesFrame(name) {
+  return name !== "m";
+}
+
 /** The body of POST /api/explore for a valid state. */
 export function exploreBody(state) {
   const body = { F_hat: state.F_hat };
   for (const name of paramNames()) {
-    // the quasi-static frame does not use the mass: moving m asks for no new frame
-    if (name !== "m") body[name] = parseNumber(state[name]);
+    if (movesFrame(name)) body[name] = parseNumber(state[name]);
   }
   return body;
 }

@@ -21,6 +21,8 @@ function axisStyle(full, own) {
   return style;
 }
 
+const legendNames = new WeakMap(); // graph -> the names a live frame last gave its legend
+
 /** Plotly's layers that the canvas stands in for, in the graph's first SVG. */
 const COVERED = [".bglayer", ".layer-below", ".cartesianlayer"];
 const DASHES = { dash: 3, dot: 1, longdash: 5 };
@@ -72,6 +74,7 @@ export function isLive(gd) {
 export function clearLive(gd) {
   if (!isLive(gd)) return;
   gd.dataset.live = "false";
+  legendNames.delete(gd); // Plotly's legend holds its own names again
   const { canvas } = layers(gd);
   if (canvas) canvas.style.display = "none";
   cover(gd, false);
@@ -369,6 +372,10 @@ function drawTrace(ctx, trace, axes, font) {
 
 /** The legend's entries renamed as the figure names its traces. */
 function renameLegend(gd, data) {
+  const names = data.map((trace) => trace.name);
+  const last = legendNames.get(gd);
+  if (last && last.length === names.length && last.every((name, i) => name === names[i])) return;
+  legendNames.set(gd, names);
   for (const item of gd.querySelectorAll(".legend .traces")) {
     const index = item.__data__?.[0]?.trace?.index;
     const name = data[index]?.name;

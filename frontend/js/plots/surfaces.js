@@ -34,7 +34,15 @@ function sameFigure(a, b) {
   return keys.every((key) => key in b && sameFigure(a[key], b[key]));
 }
 
-const graph = (id) => document.getElementById(`plot-${id}`);
+const graphs = new Map(); // plot id -> its graph element, looked up once
+function graph(id) {
+  let gd = graphs.get(id);
+  if (!gd?.isConnected) {
+    gd = document.getElementById(`plot-${id}`);
+    graphs.set(id, gd);
+  }
+  return gd;
+}
 
 /**
  * Show `figure` (styled as the page shows it) on plot `id` with Plotly: nothing when the
