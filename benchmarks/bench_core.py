@@ -12,7 +12,10 @@
    reference of the same integrator (rtol 1e-12) and the chaotic band at k = 0.01.
 3. The LuGre break-away (first local maximum of F) over six rates against solve_ivp
    (Radau and LSODA, event on dF/dt), accuracy against a Radau rtol 1e-10 reference.
-4. The README table: E13 for the four F̂ against the simulation, default preset.
+4. E13 for the four F̂ against the simulation, default preset.
+
+The speed table and the E13 table are written to docs/benchmarks/results/ (core_speed.md,
+core_e13.md), which the documentation includes.
 
 Timings are medians of repeated in-process calls after a warm-up (numba compiles or
 loads its on-disk cache on the first call). Nothing here is asserted: the test suite
@@ -23,24 +26,23 @@ from __future__ import annotations
 
 import argparse
 import math
-import os
-import platform
 import statistics
 import sys
 import time
+from pathlib import Path
 
 import numpy as np
-import scipy
 from scipy.integrate import solve_ivp
 from scipy.optimize import brentq, minimize_scalar
 
-import numba
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from results import Results, machine  # noqa: E402
 
-from breakaway import dynamics
-from breakaway.frame import FRAME_GRID, explore_frame
-from breakaway.params import DEFAULTS, FIG3_RATES, LUGRE_1995
-from breakaway.presliding import LOOP_TURNING_POINTS
-from breakaway.quasistatic import breakaway_force, breakaway_velocity
+from breakaway import dynamics  # noqa: E402
+from breakaway.frame import FRAME_GRID, explore_frame  # noqa: E402
+from breakaway.params import DEFAULTS, FIG3_RATES, LUGRE_1995  # noqa: E402
+from breakaway.presliding import LOOP_TURNING_POINTS  # noqa: E402
+from breakaway.quasistatic import breakaway_force, breakaway_velocity  # noqa: E402
 
 PRESET = {key: DEFAULTS[key] for key in ("Fc", "Fs", "V", "delta", "s", "sigma", "m", "z_ba")}
 LUGRE_RATES = [0.5, 1.0, 2.0, 5.0, 10.0, 20.0]
@@ -55,20 +57,6 @@ def median_time(func, repeat, warmup=1):
         func()
         times.append(time.perf_counter() - t0)
     return statistics.median(times), min(times)
-
-
-def machine():
-    cpu = "unknown CPU"
-    try:
-        with open("/proc/cpuinfo") as fh:
-            for line in fh:
-                if line.startswith("model name"):
-                    cpu = line.split(":", 1)[1].strip()
-                    break
-    except OSError:
-        pass
-    return (f"{cpu}, {os.cpu_count()} cores; Python {platform.python_version()}, "
-            f"numpy {np.__version__}, scipy {scipy.__version__}, numba {numba.__version__}")
 
 
 # ---------------------------------------------------------------------------------
@@ -166,7 +154,8 @@ def bench_frame(quick):
     print(f"   explore_frame        median {t_fast * 1e3:7.3f} ms (min {t_fast_min * 1e3:.3f})")
     print(f"   plain-Python loops   median {t_slow * 1e3:7.3f} ms   -> {t_slow / t_fast:.0f}x")
     print(f"   same numbers: max |difference| {diff:.1e}")
-    return {"frame_ms": t_fast * 1e3, "naive_ms": t_slow * 1e3}
+    return {"frame_ms": t_fast * 1e3, "frame_min_ms": t_fast_min * 1e3,
+            "naive_ms": t_slow * 1e3, "diff": diff}
 
 
 # ---------------------------------------------------------------------------------
@@ -257,9 +246,10 @@ def bench_sweep(quick):
           f"-> {t_scipy / t_run:.0f}x slower; max rel. error {err_sp.max():.1e} "
           f"(k >= 2.01: {err_sp[1:].max():.1e}); reversals {sp_rev[:3]} vs "
           f"{[int(n) for n in r.reversals[:3]]}")
-    return {"sweep_ms": t_run * 1e3, "sweep_err": err.max(), "sweep_loose_ms": t_loose * 1e3,
-            "sweep_loose_err": err_loose.max(), "scipy_ms": t_scipy * 1e3,
-            "band": (min(band), max(band))}
+    return {"sweep_ms": t_run * 1e3, "sweep_min_ms": t_min * 1e3, "sweep_err": err.max(),
+            "sweep_err_fast": err[1:].max(), "sweep_loose_ms": t_loose * 1e3,
+            "sweep_loose_err": err_loose.max(), "sweep_loose_err_fast": err_loose[1:].max(),
+            "scipy_ms": t_scipy * 1e3, "band": (min(band), max(band))}
 
 
 # ---------------------------------------------------------------------------------
@@ -351,12 +341,40 @@ def bench_lugre(quick):
     return out
 
 
+def speed_table(frame, sweep, lugre):
+    """The speed figures, each beside its alternative, as the docs show them."""
+    lugre_alternatives = ", ".join(f"{m} {lugre[f'lugre_{m}_ms']:.0f} ms"
+                                   for m in ("Radau", "LSODA", "RK45"))
+    lugre_ratios = " / ".join(f"{lugre[f'lugre_{m}_ms'] / lugre['lugre_ms']:.0f}×"
+                              for m in ("Radau", "LSODA", "RK45"))
+    return [
+        ["one explorer frame (Stribeck 400, loop 2,000, phase 16 × 200, break-away 4 × 200)",
+         f"{frame['frame_ms']:.2f} ms",
+         f"the same frame as plain Python loops, `self` root by `brentq`: "
+         f"{frame['naive_ms']:.1f} ms (same numbers to {frame['diff']:.0e})",
+         f"{frame['naive_ms'] / frame['frame_ms']:.0f}×"],
+        [f"ramp break-away, 15 Fig. 3 rates, rtol {dynamics.DEFAULT_RTOL:g}; max error "
+         f"{sweep['sweep_err']:.1e} (k ≥ 2.01: {sweep['sweep_err_fast']:.1e})",
+         f"{sweep['sweep_ms']:.0f} ms (min {sweep['sweep_min_ms']:.0f})",
+         f"`solve_ivp` RK45 (same Dormand–Prince pair and tolerances), events for reversal "
+         f"and break-away, restart loop in Python: {sweep['scipy_ms'] / 1e3:.1f} s",
+         f"{sweep['scipy_ms'] / sweep['sweep_ms']:.0f}×"],
+        [f"the same sweep at rtol 1e-5; max error {sweep['sweep_loose_err']:.1e} "
+         f"(k ≥ 2.01: {sweep['sweep_loose_err_fast']:.1e})",
+         f"{sweep['sweep_loose_ms']:.0f} ms", "", ""],
+        [f"LuGre break-away, 6 rates (0.5 … 20 N/s); error vs Radau rtol 1e-10: "
+         f"{lugre['lugre_err']:.0e}", f"{lugre['lugre_ms']:.1f} ms",
+         f"`solve_ivp` with an event on dF/dt at the same rtol: {lugre_alternatives}",
+         lugre_ratios],
+    ]
+
+
 # ---------------------------------------------------------------------------------
-# 4. the README table
+# 4. E13 against the simulation
 # ---------------------------------------------------------------------------------
 
 
-def table():
+def table(out):
     ks = np.asarray(FIG3_RATES)
     curve = {key: PRESET[key] for key in ("Fc", "Fs", "V", "delta", "s", "sigma")}
     e13 = {name: breakaway_force(ks, **curve, F_hat=name) for name in ("Fc", "Fs", "avg", "self")}
@@ -364,14 +382,15 @@ def table():
     r = dynamics.simulate_breakaway(ks, **PRESET)
     print()
     print("4. E13 against the simulation, default preset, default rtol")
-    print("| k [N/s] | E13 Fc | E13 Fs | E13 avg | E13 self | sim u_ba | sim F_ba | reversals "
-          "| sim ẋ_ba [m/s] | E12 ẋ* avg [m/s] |")
-    print("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+    rows = []
     for j, k in enumerate(ks):
         tr = dynamics.simulate_trajectory(k, **PRESET)
-        print(f"| {k:.2f} | {e13['Fc'][j]:.4f} | {e13['Fs'][j]:.4f} | {e13['avg'][j]:.4f} | "
-              f"{e13['self'][j]:.4f} | {r.u_ba[j]:.4f} | {r.F_ba[j]:.4f} | {r.reversals[j]} | "
-              f"{tr.v[-1]:.2f} | {v_e12[j]:.2f} |")
+        rows.append([f"{k:.2f}", f"{e13['Fc'][j]:.4f}", f"{e13['Fs'][j]:.4f}",
+                     f"{e13['avg'][j]:.4f}", f"{e13['self'][j]:.4f}", f"{r.u_ba[j]:.4f}",
+                     f"{r.F_ba[j]:.4f}", r.reversals[j], f"{tr.v[-1]:.2f}", f"{v_e12[j]:.2f}"])
+    out.table(["k [N/s]", "E13 Fc", "E13 Fs", "E13 avg", "E13 self", "sim u_ba", "sim F_ba",
+               "reversals", "sim ẋ_ba [m/s]", "E12 ẋ* avg [m/s]"], rows)
+    out.write()
 
 
 def main(argv=None):
@@ -379,13 +398,17 @@ def main(argv=None):
     parser.add_argument("--quick", action="store_true", help="fewer repetitions")
     parser.add_argument("--no-table", action="store_true", help="skip the README table")
     args = parser.parse_args(argv)
+    speed, e13 = Results("core_speed", __file__), Results("core_e13", __file__)
     print(f"Machine: {machine()}")
     print()
-    bench_frame(args.quick)
-    bench_sweep(args.quick)
-    bench_lugre(args.quick)
+    frame = bench_frame(args.quick)
+    sweep = bench_sweep(args.quick)
+    lugre = bench_lugre(args.quick)
+    print()
+    speed.table(["what", "time", "against", "ratio"], speed_table(frame, sweep, lugre))
+    speed.write()
     if not args.no_table:
-        table()
+        table(e13)
     return 0
 
 

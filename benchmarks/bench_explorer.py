@@ -19,7 +19,8 @@
    The ramp simulation is off here (it runs debounced, apart from the sliders).
 
 Nothing is asserted; the tests check values, this file reports speed. The machine is
-shared: the load average is printed with the figures.
+shared: the load average is printed with the figures. The table goes to
+docs/benchmarks/results/explorer.md, which the documentation includes.
 """
 
 from __future__ import annotations
@@ -28,7 +29,6 @@ import argparse
 import asyncio
 import json
 import os
-import platform
 import random
 import socket
 import statistics
@@ -41,6 +41,8 @@ from pathlib import Path
 import numpy as np
 
 HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE))
+from results import Results, load_average, machine  # noqa: E402
 EXPLORE_TARGET = {"server_p50_ms": 5.0, "floor_ratio": 2.0, "payload_kb": 150,
                   "rate": 300, "browser_p50_ms": 50, "browser_p95_ms": 100}
 
@@ -48,25 +50,6 @@ EXPLORE_TARGET = {"server_p50_ms": 5.0, "floor_ratio": 2.0, "payload_kb": 150,
 # ---------------------------------------------------------------------------------
 # helpers
 # ---------------------------------------------------------------------------------
-
-def machine() -> str:
-    cpu = "unknown CPU"
-    try:
-        for line in Path("/proc/cpuinfo").read_text().splitlines():
-            if line.startswith("model name"):
-                cpu = line.split(":", 1)[1].strip()
-                break
-    except OSError:
-        pass
-    return f"{cpu}, {os.cpu_count()} cores, Python {platform.python_version()}"
-
-
-def load_average() -> str:
-    try:
-        return " ".join(f"{x:.2f}" for x in os.getloadavg())
-    except OSError:
-        return "n/a"
-
 
 def pct(values, q):
     values = sorted(values)
@@ -168,7 +151,7 @@ def serve(port: int, pure_python: bool) -> None:
 # 1. serialisation
 # ---------------------------------------------------------------------------------
 
-def bench_serial(repeat: int) -> None:
+def bench_serial(rows, repeat: int) -> None:
     import orjson
 
     from breakaway.api.encoding import dumps_frame
@@ -193,6 +176,7 @@ def bench_serial(repeat: int) -> None:
         "pydantic response model": lambda: ExploreResponse.model_validate(
             tolists(frame)).model_dump_json(by_alias=True).encode(),
     }
+    medians = {}
     print("\n1. One frame to JSON (in process)")
     print(f"   {'method':28s} {'median':>9s} {'size':>9s}")
     for name, func in candidates.items():
@@ -203,6 +187,11 @@ def bench_serial(repeat: int) -> None:
             size = len(func())
             times.append(time.perf_counter() - t0)
         print(f"   {name:28s} {1e3 * statistics.median(times):7.3f} ms {size / 1024:7.1f} KB")
+        medians[name] = 1e3 * statistics.median(times)
+    rows.append(["one frame to JSON: compact orjson / `json.dumps` of lists / pydantic model",
+                 " / ".join(f"{medians[name]:.2f}" for name in (
+                     "compact orjson (API)", "json.dumps of lists", "pydantic response model"))
+                 + " ms", ""])
 
 
 # ---------------------------------------------------------------------------------
@@ -238,7 +227,7 @@ async def asgi_call(app, method: str, path: str, body: bytes) -> tuple[int, byte
     return status, b"".join(chunks)
 
 
-def bench_server(repeat: int) -> dict:
+def bench_server(rows, repeat: int) -> dict:
     from breakaway.frame import explore_frame
 
     app = bench_app()
@@ -266,7 +255,11 @@ def bench_server(repeat: int) -> dict:
     print("\n2. Server-side time, in process (whole ASGI app; bodies varied like slider moves)")
     for name, values in timings.items():
         print(f"   {name:28s} p50 {1e3 * pct(values, .5):6.3f} ms   p95 {1e3 * pct(values, .95):6.3f} ms")
-    return {name: 1e3 * pct(values, .5) for name, values in timings.items()}
+    p50 = {name: 1e3 * pct(values, .5) for name, values in timings.items()}
+    rows.append(["`/api/explore` server side, in process, p50 (of which the model)",
+                 f"{p50['explore']:.2f} ms ({p50['model only']:.2f} ms)",
+                 f"≤ {EXPLORE_TARGET['server_p50_ms']:g} ms"])
+    return p50
 
 
 # ---------------------------------------------------------------------------------
@@ -291,7 +284,7 @@ def sequential_latency(port: int, method: str, path: str, bodies: list[bytes | N
     return times
 
 
-def bench_http(repeat: int) -> dict:
+def bench_http(rows, repeat: int) -> dict:
     from breakaway.params import PRESETS
 
     bodies = [json.dumps(b).encode() for b in slider_bodies(repeat)]
@@ -321,8 +314,14 @@ def bench_http(repeat: int) -> dict:
             print(f"     {name:26s} p50 {1e3 * pct(values, .5):6.3f} ms   p95 {1e3 * pct(values, .95):6.3f} ms")
         print(f"     explore / floor (p50)      {ratio:.2f}x")
         results[label] = ratio
+        rows.append([f"latency over loopback from `http.client`, {label}: explore / empty "
+                     f"POST (p50)", f"{1e3 * pct(explore, .5):.2f} / {1e3 * pct(empty, .5):.2f} "
+                     f"ms = {ratio:.1f}×", "" if pure else f"≤ {EXPLORE_TARGET['floor_ratio']:g}×"])
     print(f"   payload: default {sizes[0] / 1024:.1f} KB, largest over presets × F̂ "
           f"{max(sizes) / 1024:.1f} KB (target ≤ {EXPLORE_TARGET['payload_kb']} KB)")
+    rows.append(["`/api/explore` payload, default / largest preset",
+                 f"{sizes[0] / 1024:.0f} / {max(sizes) / 1024:.0f} KB",
+                 f"≤ {EXPLORE_TARGET['payload_kb']} KB"])
     return results
 
 
@@ -330,7 +329,7 @@ def bench_http(repeat: int) -> dict:
 # 4. load from a second process
 # ---------------------------------------------------------------------------------
 
-def bench_load(duration: float, count: int) -> None:
+def bench_load(rows, duration: float, count: int) -> None:
     bodies = json.dumps(slider_bodies(64))
     print(f"\n4. Load from a second process on 127.0.0.1: 32 connections, "
           f"≤ {count} requests or ≤ {duration:g} s each")
@@ -345,6 +344,9 @@ def bench_load(duration: float, count: int) -> None:
             print(f"   {label:26s} {result['rate']:7.0f} req/s  errors {result['errors']}  "
                   f"({result['requests']} in {result['seconds']:.1f} s; latency p50 "
                   f"{result['p50_ms']:.1f} ms, p95 {result['p95_ms']:.1f} ms)")
+            rows.append([f"load, 32 connections from a second process: {label}",
+                         f"{result['rate']:.0f} req/s, {result['errors']} errors",
+                         f"≥ {EXPLORE_TARGET['rate']} req/s" if "explore" in label else ""])
 
 
 # ---------------------------------------------------------------------------------
@@ -414,7 +416,7 @@ SLIDER_POSITIONS = {"Fc": (400, 500), "Fs": (500, 600), "V": (600, 800), "delta"
                     "sigma": (0, 500), "k": (0, 1000), "s": (200, 400), "z_ba": (50, 97)}
 
 
-def bench_browser(repeat: int) -> None:
+def bench_browser(rows, repeat: int) -> None:
     from playwright.sync_api import sync_playwright
 
     chromium = os.environ.get("BREAKAWAY_CHROMIUM") or (
@@ -439,6 +441,10 @@ def bench_browser(repeat: int) -> None:
         print(f"   fetch() + response.json() from the page: explore p50 {pct(explore, .5):5.2f} ms, "
               f"empty POST p50 {pct(empty, .5):5.2f} ms: {pct(explore, .5) / pct(empty, .5):.2f}x "
               f"the floor")
+        rows.append(["latency from the page's `fetch`: explore / empty POST (p50)",
+                     f"{pct(explore, .5):.2f} / {pct(empty, .5):.2f} ms = "
+                     f"{pct(explore, .5) / pct(empty, .5):.1f}×",
+                     f"≤ {EXPLORE_TARGET['floor_ratio']:g}×"])
         for label, new_plot in (("Plotly.react (explorer)", False),
                                 ("Plotly.purge + newPlot", True)):
             page = browser.new_page(viewport={"width": 1280, "height": 800})
@@ -451,6 +457,10 @@ def bench_browser(repeat: int) -> None:
                   f"  (request p50 {pct([r['request'] for r in runs], .5):5.1f} ms, drawing "
                   f"p50 {pct([r['draw'] for r in runs], .5):5.1f} ms; to the next frame p50 "
                   f"{pct([r['painted'] for r in runs], .5):5.1f} ms)")
+            rows.append([f"a click on a slider → the settled plots, Chromium, {label} (p50 / p95)",
+                         f"{pct(total, .5):.1f} / {pct(total, .95):.1f} ms",
+                         f"≤ {EXPLORE_TARGET['browser_p50_ms']} / "
+                         f"≤ {EXPLORE_TARGET['browser_p95_ms']} ms" if not new_plot else ""])
         browser.close()
 
 
@@ -467,19 +477,22 @@ def main(argv=None) -> int:
         return 0
     sections = set(args.only.split(","))
     repeat = 60 if args.quick else 300
+    out, rows = Results("explorer", __file__), []
     print(f"Explorer benchmarks on {machine()}")
     print(f"load average at start: {load_average()}")
     if "serial" in sections:
-        bench_serial(repeat)
+        bench_serial(rows, repeat)
     if "server" in sections:
-        bench_server(repeat)
+        bench_server(rows, repeat)
     if "http" in sections:
-        bench_http(repeat)
+        bench_http(rows, repeat)
     if "load" in sections:
-        bench_load(duration=3.0 if args.quick else 8.0, count=1000 if args.quick else 4000)
+        bench_load(rows, duration=3.0 if args.quick else 8.0, count=1000 if args.quick else 4000)
     if "browser" in sections:
-        bench_browser(60 if args.quick else 200)
-    print(f"\nload average at end: {load_average()}")
+        bench_browser(rows, 60 if args.quick else 200)
+    print()
+    out.table(["figure", "measured", "target"], rows)
+    out.write()
     return 0
 
 

@@ -1,4 +1,4 @@
-"""Speed of the position loop (MODEL.md §5b) against scipy's solve_ivp on the same loop.
+"""Speed of the position loop (PID on m·ẍ + F = u) against scipy's solve_ivp on the same loop.
 
     .venv/bin/python benchmarks/bench_loop.py [--quick]
 
@@ -13,13 +13,13 @@
 
 Timings are medians of repeated in-process calls after a warm-up (numba loads its
 cache on the first call); the load average is printed beside them. Nothing is asserted.
+The table goes to docs/benchmarks/results/loop.md, which the documentation includes.
 """
 
 from __future__ import annotations
 
 import argparse
 import math
-import os
 import statistics
 import sys
 import time
@@ -29,7 +29,7 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from bench_core import machine  # noqa: E402
+from results import Results, load_average, machine  # noqa: E402
 
 from breakaway.dynamics import DEFAULT_RTOL, simulate_loop  # noqa: E402
 from breakaway.loop import loop_experiment  # noqa: E402
@@ -146,7 +146,9 @@ def bench(model, quick):
     t_all, t_all_min = median_time(lambda: loop_experiment(
         model, plant, gains(model), step, DURATION, points=POINTS), repeat)
     report("loop_experiment (+ phases, E13, hunting)", t_all, t_all_min)
-    out = {f"{model}_ms": t_run * 1e3, f"{model}_err": err}
+    out = {"ms": t_run * 1e3, "min_ms": t_min * 1e3, "all_ms": t_all * 1e3, "err": err,
+           "reversals": run.reversals, "breakaways": np.count_nonzero(run.code & 2),
+           "reference": reference_method, "alternatives": []}
     for method in alternatives:
         t0 = time.perf_counter()
         x = solve(t, rtol, method)
@@ -156,23 +158,38 @@ def bench(model, quick):
         print(f"   solve_ivp {method:6s} rtol {rtol:g}{'':17s} {t_sp * 1e3:8.1f} ms -> "
               f"{t_sp / t_run:.0f}x slower; max |x − x_ref| = {e:.1e}·h, "
               f"vs compiled {between:.1e}·h")
-        out[f"{model}_{method}_ms"] = t_sp * 1e3
+        out["alternatives"].append((method, t_sp * 1e3, e))
     print(f"   (x_ref: solve_ivp {reference_method} at rtol 1e-10)")
     return out
+
+
+def row(name, r):
+    """One loop's row of the table the docs include."""
+    against = "; ".join(f"{method} {ms:.0f} ms ({ms / r['ms']:.0f}×)"
+                        for method, ms, _ in r["alternatives"])
+    errors = "; ".join([f"compiled {r['err']:.1e}·h"] + [f"{method} {e:.1e}·h" for method, _, e
+                                                          in r["alternatives"]])
+    return [f"{name} ({r['reversals']} reversals, {r['breakaways']} break-aways)",
+            f"{r['ms']:.1f} ms (min {r['min_ms']:.1f})", f"{r['all_ms']:.1f} ms",
+            against, f"{errors} (reference: {r['reference']} at rtol 1e-10)"]
 
 
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="fewer repetitions")
     args = parser.parse_args(argv)
+    out = Results("loop", __file__)
     print(f"Machine: {machine()}")
-    print(f"Load average (1, 5, 15 min) at start: {os.getloadavg()}")
+    print(f"Load average (1, 5, 15 min) at start: {load_average()}")
     print()
-    bench("presliding", args.quick)
+    presliding = bench("presliding", args.quick)
     print()
-    bench("lugre", args.quick)
+    lugre = bench("lugre", args.quick)
     print()
-    print(f"Load average at end: {os.getloadavg()}")
+    out.table(["loop", "compiled `simulate_loop`", "+ phases, E13, hunting",
+               "solve_ivp on the same loop, same rtol", "error of x vs a tight reference"],
+              [row("presliding default", presliding), row("LuGre default", lugre)])
+    out.write()
     return 0
 
 

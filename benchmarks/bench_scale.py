@@ -7,6 +7,7 @@ peak resident memory. The obvious alternative, the same diagnosis without screen
 extrapolated linearly in rows (it is at least linear: every fit touches every row).
 
 Run: .venv/bin/python benchmarks/bench_scale.py [--rows N] [--alternative-rows M]
+The table goes to docs/benchmarks/results/scale.md, which the documentation includes.
 """
 
 from __future__ import annotations
@@ -18,6 +19,10 @@ import subprocess
 import sys
 import tempfile
 import textwrap
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from results import Results  # noqa: E402
 
 CHILD = textwrap.dedent("""
     import json, resource, sys, time
@@ -66,6 +71,7 @@ def main() -> None:
     parser.add_argument("--rows", type=int, default=1_000_000)
     parser.add_argument("--alternative-rows", type=int, default=100_000)
     args = parser.parse_args()
+    out = Results("scale", __file__)
     with tempfile.TemporaryDirectory() as tmp:
         big, small = os.path.join(tmp, "big.csv"), os.path.join(tmp, "small.csv")
         counts = os.path.join(tmp, "counts.csv")
@@ -91,6 +97,26 @@ def main() -> None:
           f"(effects {plain['effects']}, peak RSS {plain['peak_mb']:.0f} MB); "
           f"x{scale:g} rows -> about {plain['total_s'] * scale:.0f} s")
     print(f"speed-up at {args.rows:,} rows: about {plain['total_s'] * scale / screened['total_s']:.0f}x")
+    print()
+
+    def effects(run):
+        return ", ".join(run["effects"]) or "none"
+
+    out.table(["record", "parse", "parse + diagnosis", "peak RSS", "effects found",
+               "RMSE before → after [N]"], [
+        [f"{screened['rows']:,} rows ({size:.0f} MB CSV), screened on "
+         f"{screened['screened_rows']:,} rows in blocks", f"{screened['parse_s']:.1f} s",
+         f"{screened['total_s']:.1f} s", f"{screened['peak_mb']:.0f} MB", effects(screened),
+         f"{screened['rmse_before']:.3g} → {screened['rmse_after']:.3g}"],
+        ["the same read by a 1 µm encoder", "", f"{encoder['total_s']:.1f} s",
+         f"{encoder['peak_mb']:.0f} MB", effects(encoder),
+         f"{encoder['rmse_before']:.3g} → {encoder['rmse_after']:.3g}"],
+        [f"without screening, {plain['rows']:,} rows", "", f"{plain['total_s']:.1f} s "
+         f"(×{scale:g} rows: about {plain['total_s'] * scale:.0f} s)",
+         f"{plain['peak_mb']:.0f} MB", effects(plain),
+         f"{plain['rmse_before']:.3g} → {plain['rmse_after']:.3g}"],
+    ])
+    out.write()
 
 
 if __name__ == "__main__":

@@ -18,6 +18,8 @@ every miss by seed.
 
 Run: .venv/bin/python benchmarks/realistic.py [-j 2] [--families NAME ...] [--seeds N]
      [--machines] [--save DIR]
+The table and the notes under it go to docs/benchmarks/results/realistic.md, which the
+documentation includes.
 """
 
 from __future__ import annotations
@@ -39,6 +41,9 @@ import numpy as np
 # imported as pytest imports them (package ``identify`` under tests/), so that the
 # plant's numba cache, keyed by module name, serves both
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+from results import Results  # noqa: E402
 
 from breakaway.identify import identify, parse_csv  # noqa: E402
 from identify.expectations import failures  # noqa: E402
@@ -149,6 +154,7 @@ def main() -> int:
             parser.error(f"no family matches {' '.join(args.families)}")
     if args.save:
         os.makedirs(args.save, exist_ok=True)
+    out = Results("realistic", __file__)
     seeds = SEEDS[:args.seeds]
     jobs = [(name, seed, args.save) for name in chosen for seed in seeds]
     print(f"{len(chosen)} families × seeds {seeds[0]}–{seeds[-1]} = {len(jobs)} fits, "
@@ -162,15 +168,12 @@ def main() -> int:
         results = [run_one(job) for job in jobs]
     wall = time.perf_counter() - started
 
-    print("\n| family | right | right but for input_floor | misses (kind × count) "
-          "| s per fit (median, max) | floor within tolerance: engine, plain estimate |")
-    print("|---|---|---|---|---|---|")
-    right_total = [0, 0]
+    rows, right_total = [], [0, 0]
     below_target = []
     for name in chosen:
         mine = [r for r in results if r["family"] == name]
         right = sum(not r["failures"] for r in mine)
-        # input_floor is new in the report (MODEL.md §8): the rest of the verdict apart
+        # input_floor is new in the report: the rest of the verdict apart
         nearly = sum(all(miss_kind(m) == "no input_floor" for m in r["failures"]) for r in mine)
         right_total[0] += right
         right_total[1] += len(mine)
@@ -182,17 +185,20 @@ def main() -> int:
                 kinds[kind] = kinds.get(kind, 0) + 1
         misses = ", ".join(f"{k} × {c}" for k, c in sorted(kinds.items(), key=lambda kc: -kc[1]))
         seconds = [r["seconds"] for r in mine]
-        print(f"| {name} | {right}/{len(mine)} | {nearly}/{len(mine)} | {misses or '-'} | "
-              f"{statistics.median(seconds):.1f}, {max(seconds):.1f} | "
-              f"{_share(r['floor_ok'] for r in mine)}, {_share(r['plain_ok'] for r in mine)} |")
-    print(f"\n{right_total[0]} of {right_total[1]} recordings get the report they must; "
-          f"{len(chosen) - len(below_target)} of {len(chosen)} families at ≥ 90 % "
-          f"({wall:.0f} s wall; load average after: "
-          f"{', '.join(f'{x:.2f}' for x in os.getloadavg())})")
-    if below_target:
-        print("below 90 %: " + ", ".join(below_target))
+        rows.append([name, f"{right}/{len(mine)}", f"{nearly}/{len(mine)}", misses or "-",
+                     f"{statistics.median(seconds):.1f}, {max(seconds):.1f}",
+                     f"{_share(r['floor_ok'] for r in mine)}, "
+                     f"{_share(r['plain_ok'] for r in mine)}"])
+    print()
+    out.note(f"**{right_total[0]} of {right_total[1]} recordings get the report they must**; "
+             f"{len(chosen) - len(below_target)} of {len(chosen)} families at ≥ 90 % "
+             f"(seeds {seeds[0]}–{seeds[-1]}, {wall:.0f} s wall)"
+             + (f"; below 90 %: {', '.join(below_target)}." if below_target else "."))
+    out.table(["family", "right", "right but for input_floor", "misses (kind × count)",
+               "s per fit (median, max)", "floor within tolerance: engine, plain estimate"],
+              rows)
     wrong = [r for r in results if r["failures"]]
-    print("\nWhy required effects went unnamed (the engine's reasons, numbers as #):")
+    unnamed = []
     for name in chosen:
         reasons = {}
         for r in results:
@@ -201,7 +207,10 @@ def main() -> int:
                     reasons[why] = reasons.get(why, 0) + 1
         if reasons:
             top = sorted(reasons.items(), key=lambda kv: -kv[1])[:3]
-            print(f"- {name}: " + "; ".join(f"{why} × {count}" for why, count in top))
+            unnamed.append(f"- {name}: " + "; ".join(f"{why} × {count}" for why, count in top))
+    if unnamed:
+        out.note("Why required effects went unnamed (the engine's reasons, numbers as #):\n\n"
+                 + "\n".join(unnamed))
     if wrong:
         print("\nMisses:")
         for r in wrong:
@@ -209,6 +218,7 @@ def main() -> int:
                   f"{', '.join(r['effects']) or 'none'}):")
             for message in r["failures"]:
                 print(f"    {message}")
+    out.write()
     return 0
 
 

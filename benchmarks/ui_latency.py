@@ -1,9 +1,13 @@
 """The explorer at the speed of a hand: input to plots showing the new value, in the page.
 
     .venv/bin/python benchmarks/ui_latency.py [--presses N] [--sliders Fc,Fs,...] [--only keys,slow,drag]
+                                              [--throttle 1,4]
 
 Headless Chromium, 1280×800, the default page (the ramp and the simulation on). Events
-come from timers in the page, so their spacing is the page's, not Playwright's:
+come from timers in the page, so their spacing is the page's, not Playwright's. Every
+figure is measured twice: at the machine's speed, and with Chromium's CPU throttled 4×
+(`--throttle`; DevTools' Emulation.setCPUThrottlingRate, as page-speed tools emulate a
+mid-range phone), the throttled run beside the plain one.
 
 - keys: keydown events on the focused slider, 150 ms apart, five presses one way and
   five back (so half the presses go each way, and every fifth turns); `--presses` per
@@ -27,7 +31,9 @@ same session: every input drawn by `Plotly.react` as it comes
 
 Goal (issue 21): p50 ≤ 16 ms and p95 ≤ 33 ms for every slider, either way, keys or
 pointer; during a drag ≥ 30 frames per second and the last value shown ≤ 50 ms after the
-last input. Nothing is asserted; tests check behaviour, this file reports speed.
+last input. Goal (issue 27), the CPU throttled 4×: key presses p50 ≤ 16 ms and p95 ≤ 33 ms,
+drags ≥ 30 frames per second. Nothing is asserted; tests check behaviour, this file
+reports speed.
 """
 
 from __future__ import annotations
@@ -38,6 +44,7 @@ import sys
 
 from bench_explorer import load_average, machine, pct
 from bench_page import Server, launch
+from results import Results
 
 SLIDERS = ["Fc", "Fs", "V", "delta", "sigma", "k", "s", "z_ba", "m"]
 
@@ -151,10 +158,10 @@ def fmt(values, q) -> str:
     return f"{pct(values, q):6.1f}" if values else "     –"
 
 
-def report_keys(results: dict, sliders: list[str]) -> None:
+def report_keys(results: dict, sliders: list[str], rows, title) -> None:
     labels = list(results)
     print(f"   {'slider':7s}" + "".join(
-        f" | {label[:24]:>24s}: right p50/p95, left p50/p95, turns p50" for label in labels))
+        f" | {label:>34s}: right p50/p95, left p50/p95, turns p50" for label in labels))
     totals = {label: [] for label in labels}
     for name in sliders:
         row = f"   {name:7s}"
@@ -171,12 +178,15 @@ def report_keys(results: dict, sliders: list[str]) -> None:
         every = totals[label]
         print(f"   every slider, {label}: p50 {pct(every, .5):.1f} ms, p95 {pct(every, .95):.1f} ms, "
               f"max {max(every):.1f} ms ({len(every)} presses)")
+    rows.append([f"{title}, every slider: p50 / p95 / max"] + [
+        f"{pct(totals[label], .5):.1f} / {pct(totals[label], .95):.1f} / "
+        f"{max(totals[label]):.1f} ms" for label in labels])
 
 
-def report_drags(results: dict, sliders: list[str]) -> None:
+def report_drags(results: dict, sliders: list[str], rows) -> None:
     labels = list(results)
     print(f"   {'slider':7s}" + "".join(
-        f" | {label[:24]:>24s}: frames/s, p50, p95, last [ms]" for label in labels))
+        f" | {label:>34s}: frames/s, p50, p95, last [ms]" for label in labels))
     for name in sliders:
         row = f"   {name:7s}"
         for label in labels:
@@ -185,6 +195,14 @@ def report_drags(results: dict, sliders: list[str]) -> None:
             row += (f" | {figures['fps']:6.1f} {fmt(figures['latencies'], .5)} "
                     f"{fmt(figures['latencies'], .95)} {last}")
         print(row)
+        cells = []
+        for label in labels:
+            figures = drag_figures(results[label][name])
+            last = "–" if figures["last"] is None else f"{figures['last']:.1f}"
+            cells.append(f"{figures['fps']:.1f}/s, {pct(figures['latencies'], .5):.1f}, "
+                         f"{pct(figures['latencies'], .95):.1f}, {last} ms")
+        rows.append([f"drag of {name}: frames per second, p50, p95, last value after the "
+                     f"last input"] + cells)
 
 
 def main(argv=None) -> int:
@@ -193,36 +211,49 @@ def main(argv=None) -> int:
     parser.add_argument("--presses", type=int, default=40)
     parser.add_argument("--sliders", default=",".join(SLIDERS))
     parser.add_argument("--only", default="keys,slow,drag")
+    parser.add_argument("--throttle", default="1,4",
+                        help="CPU slow-down factors to run at (1: the machine's speed)")
     args = parser.parse_args(argv)
     sliders = args.sliders.split(",")
+    rates = [float(rate) for rate in args.throttle.split(",")]
     print(f"Machine: {machine()}; load average at the start {load_average()}")
     from playwright.sync_api import sync_playwright
 
     variants = (("the page (live frames)", []),
                 ("Plotly.react per input", ["window.breakaway.live(false)"]))
+    out, rows = Results("ui_latency", __file__), []
     with Server() as server, sync_playwright() as playwright:
         browser = launch(playwright)
         for mode in args.only.split(","):
             results = {}
-            for label, setup in variants:
-                page = browser.new_page(viewport={"width": 1280, "height": 800})
-                page.set_default_timeout(600_000)
-                page.goto(f"{server.url}/")
-                page.evaluate("window.breakaway.rampReady()")
-                page.evaluate("window.breakaway.simReady()")
-                for script in setup:
-                    page.evaluate(script)
-                results[label] = run_variant(page, sliders, mode, args)
-                page.close()
+            for rate in rates:
+                for label, setup in variants:
+                    page = browser.new_page(viewport={"width": 1280, "height": 800})
+                    page.set_default_timeout(600_000)
+                    page.goto(f"{server.url}/")
+                    page.evaluate("window.breakaway.rampReady()")
+                    page.evaluate("window.breakaway.simReady()")
+                    for script in setup:
+                        page.evaluate(script)
+                    if rate != 1:
+                        cdp = page.context.new_cdp_session(page)
+                        cdp.send("Emulation.setCPUThrottlingRate", {"rate": rate})
+                    results[label if rate == 1 else f"{label}, CPU {rate:g}× slower"] = \
+                        run_variant(page, sliders, mode, args)
+                    page.close()
             title = {"keys": "Key presses 150 ms apart", "slow": "Key presses 200–700 ms apart (settles in between)",
                      "drag": "Pointer drags: 2 s of input events at 60/s, then the release"}[mode]
             print(f"\n{title} (load average {load_average()}), event → frame showing the value [ms]:")
             if mode == "drag":
-                report_drags(results, sliders)
+                report_drags(results, sliders, rows)
             else:
-                report_keys(results, sliders)
+                report_keys(results, sliders, rows, title)
         browser.close()
-    print(f"\nLoad average at the end: {load_average()}")
+    print()
+    out.table(["", *(label for label, _ in variants)], rows)
+    out.note(f"Sliders: {', '.join(sliders)}; {args.presses} presses each; headless Chromium "
+             f"at 1280×800; latency from the event to the frame that shows the value.")
+    out.write()
     return 0
 
 

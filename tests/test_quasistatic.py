@@ -1,6 +1,7 @@
 """Quasi-static break-away: the phase family (E12) and the break-away curve (E13)."""
 
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -293,3 +294,25 @@ def test_self_root_is_exact_on_both_solver_paths(params):
     v = presliding_velocity(0.95, k, Fc, Fs, V, delta, 1.0, sigma, "self")
     residual = v * steady_state_force(v, Fc, Fs, V, delta, sigma) - c
     np.testing.assert_allclose(residual / c, 0.0, atol=1e-12)
+
+
+@pytest.mark.parametrize("delta", [1000.0, -1000.0])
+@pytest.mark.parametrize("F_hat", F_HAT_CHOICES)
+def test_a_very_sharp_stribeck_curve_is_computed_without_overflow(delta, F_hat):
+    # δ = ±1000 makes the Stribeck curve a step at V: y = (v/V)^δ overflows a float where
+    # e^(−y) is long 0; it used to warn (overflow, 0·inf) and give a NaN Newton slope
+    k = np.array([0.05, 1.0, 4.0, 10.0, 30.0])
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        F = breakaway_force(k, 1.0, 1.5, 2.0, delta, F_hat=F_hat)
+        v = presliding_velocity(0.95, k, 1.0, 1.5, 2.0, delta, F_hat=F_hat)
+    c = k / -np.log(0.95)
+    # the step: Fs below V and Fc above it (δ > 0), the other way round for δ < 0
+    below, above = (1.5, 1.0) if delta > 0 else (1.0, 1.5)
+    if F_hat == "self":
+        # the smallest root of v·g(v) = c: c/below while it stays below V, else c/above
+        expected = np.where(c / below < 2.0, c / below, c / above)
+    else:
+        expected = c / LEVELS[F_hat]
+    np.testing.assert_allclose(v, expected, rtol=1e-12)
+    np.testing.assert_allclose(F, np.where(expected < 2.0, below, above), rtol=1e-12)

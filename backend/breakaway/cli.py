@@ -1,5 +1,5 @@
-"""Command line: ``breakaway serve``, ``breakaway fit`` and ``breakaway export``
-(MODEL.md §9)."""
+"""Command line: ``breakaway serve``, ``breakaway fit``, ``breakaway export`` and
+``breakaway plan`` (documented on the command-line page of the documentation)."""
 
 from __future__ import annotations
 
@@ -75,6 +75,83 @@ def _export(args: argparse.Namespace) -> int:
             return 2
     else:
         sys.stdout.write(text)
+    return 0
+
+
+def _read_json(path: str, command: str) -> tuple[object, int]:
+    """A JSON file, or (None, 2) after one line on stderr naming what is wrong."""
+    import json
+
+    try:
+        with open(path, encoding="utf-8") as fh:
+            return json.load(fh), 0
+    except OSError as err:
+        print(f"breakaway {command}: {path}: cannot read: {err.strerror}", file=sys.stderr)
+    except (json.JSONDecodeError, UnicodeDecodeError) as err:
+        print(f"breakaway {command}: {path}: not JSON: {err}", file=sys.stderr)
+    return None, 2
+
+
+def _ranges(items: list[str]) -> dict:
+    """``--range V=0.001:0.1`` → {"V": (0.001, 0.1)}."""
+    out = {}
+    for item in items:
+        name, _, span = item.partition("=")
+        low, _, high = span.partition(":")
+        try:
+            out[name.strip()] = (float(low), float(high))
+        except ValueError:
+            raise SystemExit(f"breakaway plan: --range {item!r}: expected NAME=LOW:HIGH") from None
+    return out
+
+
+def _plan(args: argparse.Namespace) -> int:
+    """The next experiment for a report (or parameters); the programme to ``-o``; a bad
+    input is one line on stderr and exit code 2."""
+    import json
+
+    from .plan import PlanError, plan_experiment
+    from .plan.text import format_plan
+
+    if (args.report is None) == (args.params is None):
+        print("breakaway plan: give a REPORT.json or --params JSON, not both", file=sys.stderr)
+        return 2
+    report = params = None
+    if args.report is not None:
+        report, code = _read_json(args.report, "plan")
+        if code:
+            return code
+    else:
+        try:
+            params = json.loads(args.params)
+        except json.JSONDecodeError as err:
+            print(f"breakaway plan: --params: not JSON: {err}", file=sys.stderr)
+            return 2
+        if not isinstance(params, dict):
+            print("breakaway plan: --params must be a JSON object", file=sys.stderr)
+            return 2
+    limits = {"u_max": args.u_max, "v_max": args.v_max, "v_min": args.v_min,
+              "travel": args.travel, "duration": args.duration, "sample_rate": args.sample_rate}
+    targets = [t.strip() for t in args.targets.split(",") if t.strip()] if args.targets else None
+    try:
+        result = plan_experiment(args.family, report=report, params=params, limits=limits,
+                                 runs=args.runs, noise=args.noise, targets=targets,
+                                 ranges=_ranges(args.range) or None, grid=args.grid)
+    except PlanError as err:
+        where = args.report or "--params"
+        print(f"breakaway plan: {where}: {'.'.join(map(str, err.path))}: {err}", file=sys.stderr)
+        return 2
+    if args.output:
+        try:
+            with open(args.output, "w", encoding="utf-8") as fh:
+                fh.write(result["programme"])
+        except OSError as err:
+            print(f"breakaway plan: {args.output}: cannot write: {err.strerror}", file=sys.stderr)
+            return 2
+    if args.json:
+        print(json.dumps(result, indent=2, ensure_ascii=False))
+    else:
+        print(format_plan(result, args.output), end="")
     return 0
 
 
@@ -201,7 +278,8 @@ def build_parser() -> argparse.ArgumentParser:
     serve.set_defaults(handler=_serve)
     fit = commands.add_parser("fit", help="fit measured CSVs and report the effects found")
     fit.add_argument("files", nargs="+", metavar="FILE",
-                     help="CSV file(s) (MODEL.md §6); several give one summary row each")
+                     help="CSV file(s): timeseries t,x,F; steady v,F; breakaway k,F_ba; "
+                          "several give one summary row each")
     fit.add_argument("--jobs", type=int, default=1,
                      help="local worker processes for several files (default 1)")
     fit.add_argument("--dask", metavar="ADDRESS", default=None,
@@ -211,12 +289,12 @@ def build_parser() -> argparse.ArgumentParser:
                      help="write the summary table to PREFIX.csv and PREFIX.json")
     fit.add_argument("--kind", choices=("timeseries", "steady", "breakaway"), default=None,
                      help="data kind (default: from a '# kind:' line or the columns)")
-    fit.add_argument("--json", action="store_true", help="print the JSON report (MODEL.md §8)")
+    fit.add_argument("--json", action="store_true", help="print the JSON identification report")
     fit.set_defaults(handler=_fit)
     export = commands.add_parser(
         "export", help="the fitted model of a report as standalone Python, C99 or JSON")
     export.add_argument("report", metavar="REPORT.json",
-                        help="a report of breakaway fit FILE --json (MODEL.md §8)")
+                        help="a report of breakaway fit FILE --json")
     export.add_argument("--lang", choices=("python", "c", "json"), required=True,
                         help="python: steady(v), class Presliding with step(x, t); c: "
                              "bk_steady, bk_state, bk_init, bk_step; json: the parameters")
@@ -227,6 +305,39 @@ def build_parser() -> argparse.ArgumentParser:
     export.add_argument("--t0", type=float, default=None,
                         help="the time [s] a drift refers to, where the report has no t_0")
     export.set_defaults(handler=_export)
+    plan = commands.add_parser(
+        "plan", help="the next experiment: runs that determine what a report leaves open")
+    plan.add_argument("report", metavar="REPORT.json", nargs="?", default=None,
+                      help="a report of breakaway fit FILE --json")
+    plan.add_argument("--params", metavar="JSON", default=None,
+                      help='model parameters instead of a report, e.g. \'{"Fc": 1, "Fs": 1.5}\'')
+    plan.add_argument("--family", choices=("ramps", "steady", "sine"), required=True,
+                      help="ramps: force ramps at chosen rates (break-away forces); steady: "
+                           "speed set-points both ways; sine: one position sine through "
+                           "presliding and reversals")
+    plan.add_argument("--u-max", type=float, default=None,
+                      help="largest force the rig applies [N] (default: the record's largest)")
+    plan.add_argument("--v-max", type=float, default=None,
+                      help="largest speed [m/s] (default: the record's largest)")
+    plan.add_argument("--v-min", type=float, default=None,
+                      help="slowest speed the rig holds steadily [m/s] (set-points)")
+    plan.add_argument("--travel", type=float, default=None, help="travel [m] (the sine)")
+    plan.add_argument("--duration", type=float, default=None,
+                      help="longest a run may last [s] (default: the record's length, or 60)")
+    plan.add_argument("--sample-rate", type=float, default=None,
+                      help="samples per second of a record [Hz] (the sine)")
+    plan.add_argument("--runs", type=int, default=None, help="runs (ramps, set-points; default 12)")
+    plan.add_argument("--noise", type=float, default=None,
+                      help="std of one measured force [N] (default: the record's)")
+    plan.add_argument("--targets", default=None, metavar="Fs,V",
+                      help="parameters to determine (default: those the data do not)")
+    plan.add_argument("--range", action="append", default=[], metavar="NAME=LOW:HIGH",
+                      help="take a parameter as open over this range (repeatable)")
+    plan.add_argument("--grid", type=int, default=None, help="candidate design points")
+    plan.add_argument("-o", "--output", metavar="PROGRAMME.csv", default=None,
+                      help="write the programme (run,t,u / run,v / t,x) to this file")
+    plan.add_argument("--json", action="store_true", help="print the plan as JSON")
+    plan.set_defaults(handler=_plan)
     return parser
 
 

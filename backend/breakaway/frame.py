@@ -9,7 +9,7 @@ from .presliding import hysteresis_loop
 from .quasistatic import breakaway_force, phase_family
 from .steady import steady_state_force
 
-#: Grid sizes of one frame (MODEL.md §9 payload; the benchmark's "explorer frame").
+#: Grid sizes of one frame (the ``/api/explore`` payload; the benchmark's "explorer frame").
 FRAME_GRID = {
     "stribeck": 400,  # points of Fss(v)
     "loop": 2000,  # samples of the hysteresis loop

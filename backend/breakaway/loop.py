@@ -1,8 +1,8 @@
-"""The position loop of MODEL.md §5b as the loop view and ``POST /api/loop`` show it:
+"""The position loop as the loop view and ``POST /api/loop`` show it:
 the run's time series, its stick phases beside the note's (E13), hunting and the RMS
 error.
 
-While the body sticks with e ≠ 0 the integral term ramps u at k = Ki·|e|, so each stick
+While the body sticks with e ≠ 0 the integral term ramps u at ``k = Ki·|e|``, so each stick
 ends in a break-away like the ramp experiment's, which (E13) predicts at that k. A
 stick phase runs from a change of sign of ẋ (the first after a break-away), or t = 0,
 to the next break-away: the presliding fraction reaching z* on the current branch
@@ -78,7 +78,7 @@ def phase_e13(k, direction, steady, s, F_hat, z_ba):
 
 
 def hunting(t_ba, direction, t, e, t_end):
-    """The stick-slip limit cycle (MODEL.md §5b), or None when the loop settles.
+    """The stick-slip limit cycle, or None when the loop settles.
 
     Hunting: the last half of the run, ``t >= t_end/2``, holds at least two break-aways.
     ``period`` is their mean spacing [s], ``amplitude`` half the peak-to-peak of e there
@@ -120,7 +120,7 @@ def rms_error(t, e):
 def loop_experiment(model: str, params: dict, controller: dict, reference: dict,
                     duration: float, compensation: dict | None = None, F_hat: str = "avg",
                     points: int = 2000, max_steps: int = 2_000_000) -> dict:
-    """One run of the §5b loop with everything the loop view shows.
+    """One run of the position loop with everything the loop view shows.
 
     Parameters are those of :func:`breakaway.dynamics.simulate_loop`; ``F_hat`` is the
     level of the phases' (E13) values. For LuGre these use its steady state (vs as V,

@@ -1,4 +1,4 @@
-"""Model parameters: defaults, presets and validation (MODEL.md §1).
+"""Model parameters: defaults, presets and validation (the symbols, units and constraints of the model).
 
 All model functions take plain floats; the dictionaries here are the one documented
 place where default values live.
@@ -14,7 +14,7 @@ from typing import Mapping
 #: (``ẋ* ≈ 19.5·k/F̂`` for ``z* = 0.95``, ``s = 1``) far below ``V`` at ``k = 0.01``
 #: (``F_ba ≈ Fs``) and at ~4.7·V at ``k = 30`` (``F_ba`` within 1 % of ``Fc``), so F_ba
 #: falls across the whole Fig. 3 range with the Fc, Fs and avg curves apart in between,
-#: as in the note's Fig. 5. ``m = 1e-4 kg`` is the small mass of MODEL.md §5's example.
+#: as in the note's Fig. 5. ``m = 1e-4 kg`` is the small mass of the ramp experiment's worked example.
 DEFAULTS: dict[str, float | str] = {
     "Fc": 1.0,  # Coulomb level [N]
     "Fs": 1.5,  # Stribeck (stiction) level [N]
@@ -36,7 +36,8 @@ DEFAULTS: dict[str, float | str] = {
 #: parameters finite.
 MAGNITUDE = (1e-30, 1e30)
 
-#: The LuGre comparison model of Canudas de Wit et al. (1995), MODEL.md §5.
+#: The LuGre comparison model of Canudas de Wit et al. (1995), with the
+#: parameters of that paper.
 LUGRE_1995: dict[str, float] = {
     "sigma0": 1e5,  # bristle stiffness [N/m]
     "sigma1": math.sqrt(1e5),  # bristle damping [N s/m]
@@ -48,7 +49,7 @@ LUGRE_1995: dict[str, float] = {
     "m": 1.0,  # [kg]
 }
 
-#: The position loop of MODEL.md §5b (the loop view and ``POST /api/loop``): the mass,
+#: The position loop (the loop view and ``POST /api/loop``): the mass,
 #: controller and references per friction model, on the model's own parameters
 #: (:data:`DEFAULTS` for ``presliding``, normalised units with s = 1; :data:`LUGRE_1995`
 #: for ``lugre``, SI). Chosen so that a step hunts within a 5-s run:
@@ -192,7 +193,7 @@ def _finite(name: str, value: float) -> float:
 
 
 def check_stribeck(Fc: float, Fs: float, V: float, delta: float, sigma: float = 0.0) -> None:
-    """Raise ``ValueError`` naming the parameter when (E2)'s constraints of §1 fail."""
+    """Raise ``ValueError`` naming the parameter when the model's constraints fail."""
     Fc, Fs = _finite("Fc", Fc), _finite("Fs", Fs)
     V, delta, sigma = _finite("V", V), _finite("delta", delta), _finite("sigma", sigma)
     if Fc <= 0:

@@ -1,7 +1,7 @@
 """Presliding friction with reversal memory: the shape (E4) and the law (E6').
 
 Along a sampled trajectory the state is the current direction ``d``, and the position
-``x_r`` and force ``F_r`` at the last motion reversal (MODEL.md §3). Memory is local:
+``x_r`` and force ``F_r`` at the last motion reversal. Memory is local:
 only the last reversal is kept.
 """
 
@@ -46,7 +46,7 @@ def presliding_slope(z):
 
 
 def motion_direction(x):
-    """Direction ``d_i`` of each sample of a position record (MODEL.md §3).
+    """Direction ``d_i`` of each sample of a position record.
 
     ``d_i = sgn(x_i − x_{i−1})`` where that is non-zero, else ``d_{i−1}``; ``d_0`` is the
     sign of the first non-zero increment (+1 if there is none).
@@ -122,7 +122,7 @@ def presliding_force(t, x, Fc, Fs, V, delta, s, sigma=0.0, F0=0.0):
     """Friction along a sampled trajectory with reversal memory (E6').
 
     ``F = F_r + (d·g(v) + σ·v − F_r)·f(z)``, ``z = min(s·|x − x_r|, 1)``, with the
-    reference discretisation of MODEL.md §3: ``v = gradient(x, t)``, a reversal at
+    reference discretisation of a sampled record: ``v = gradient(x, t)``, a reversal at
     sample ``i`` when ``d_i ≠ d_{i−1}`` sets ``x_r = x_{i−1}``, ``F_r = F_{i−1}``.
 
     Parameters

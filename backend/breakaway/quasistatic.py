@@ -21,6 +21,8 @@ _SELF_BRACKET_POINTS = 48
 _SELF_BISECTIONS = 40
 #: Safeguarded Newton steps where ẋ·Fss(ẋ) is strictly increasing (converges in ~6).
 _SELF_NEWTON_STEPS = 30
+#: ln y beyond which y = (v/V)^δ is not formed (it would overflow; e^(−y) is 0 anyway).
+_LOG_Y_MAX = 700.0
 
 
 def level(F_hat, Fc, Fs):
@@ -51,11 +53,18 @@ def e12_acceleration(k, F_hat, s=1.0, z=0.95):
 
 
 def _work_and_slope(v, Fc, Fs, V, delta, sigma):
-    """``h(v) = v·Fss(v)`` and ``h'(v)`` for ``v > 0`` (parameters already checked)."""
-    y = np.power(v / V, delta)
+    """``h(v) = v·Fss(v)`` and ``h'(v)`` for ``v > 0`` (parameters already checked).
+
+    ``h' = g − (Fs − Fc)·δ·y·e^(−y) + 2σv`` with ``y = (v/V)^δ``. ``y`` is formed from its
+    logarithm and ``y·e^(−y)`` as ``exp(ln y − y)``: with a large ``|δ|`` (δ = 1000) ``y``
+    overflows a float where ``e^(−y)`` and ``y·e^(−y)`` are long 0, and ``0·inf`` is NaN.
+    """
+    log_y = delta * (np.log(v) - np.log(V))
+    # e^(−y) is 0 from y ≈ 745 on: capping ln y at 700 changes no value
+    y = np.exp(np.minimum(log_y, _LOG_Y_MAX))
     decay = (Fs - Fc) * np.exp(-y)
     g = Fc + decay
-    return v * g + sigma * v * v, g - decay * delta * y + 2 * sigma * v
+    return v * g + sigma * v * v, g - (Fs - Fc) * delta * np.exp(log_y - y) + 2 * sigma * v
 
 
 def _work_is_increasing(Fc, Fs, delta, sigma):

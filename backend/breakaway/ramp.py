@@ -1,4 +1,4 @@
-"""The ramp experiment of MODEL.md §5 at one rate, as time series, beside E13.
+"""The ramp experiment (E7) at one rate, as time series, beside E13.
 
 What the explorer's ramp view and ``POST /api/ramp`` show: the actuation u = k·t, the
 friction F, x, ẋ and z over the run up to break-away, the break-away instant, and the
@@ -20,7 +20,7 @@ MAX_POINTS = 2000
 
 
 def presliding_z(x, v, s):
-    """z = s·|x − x_r| along a simulated run [-] (E5).
+    """``z = s·|x − x_r|`` along a simulated run [-] (E5).
 
     Parameters
     ----------

@@ -7,7 +7,8 @@ from pathlib import Path
 
 from pydantic_settings import BaseSettings, SettingsConfigDict
 
-_REPO_FRONTEND = Path(__file__).resolve().parents[2] / "frontend"
+_REPO = Path(__file__).resolve().parents[2]
+_REPO_FRONTEND = _REPO / "frontend"
 
 
 class Settings(BaseSettings):
@@ -18,13 +19,19 @@ class Settings(BaseSettings):
     host: str = "127.0.0.1"
     port: int = 8000
     frontend_dir: Path = _REPO_FRONTEND
-    #: Largest accepted upload for /api/fit [bytes] (MODEL.md §6: 20 MB).
+    #: The built documentation (``scripts/docs``), served under /guide/.
+    docs_dir: Path = _REPO / "docs" / "_build" / "html"
+    #: Largest accepted upload for /api/fit [bytes] (20 MiB).
     max_upload_bytes: int = 20 * 1024 * 1024
     #: Largest request body for the JSON endpoints [bytes].
     max_json_bytes: int = 64 * 1024
     #: Caps on grid sizes and rate lists in requests.
     max_grid_points: int = 5000
     max_rates: int = 64
+    #: Caps of a plan of the next experiment (POST /api/plan): runs, and candidate
+    #: design points (rates, speeds, the sine's amplitudes times frequencies).
+    max_plan_runs: int = 64
+    max_plan_grid: int = 400
     #: Significant digits of /api/explore floats when they cannot go as float32 (see
     #: api/encoding.py; 7 digits keep the relative error below 5e-7).
     payload_digits: int = 7

@@ -1,41 +1,50 @@
-// The explorer page: start-up, the tabs, the link to the data panel, and the hooks for
-// tests and scripts (window.breakaway). The page's modules, each with one job:
-//   store.js        the state and the signals (#plots data-ready, data-frame, …)
-//   render.js       the one render path: state → request → figures → plots
-//   views.js        the registry of views the render path walks
-//   modelviews.js   the four model plots; rampview.js the ramp experiment;
-//                   loopview.js the control loop (its controls, state and sentence)
-//   viewrequests.js the views with requests of their own; simulation.js the simulated
-//                   points; lessons.js pin, sweep and tour; inputs.js the controls;
-//                   phone.js the plot in view on a phone
+// The explorer page: start-up, the link to the data panel, and the hooks for
+// tests and scripts (window.breakaway). The page's modules, grouped by what they serve:
+//   page/       the state and its signals (store.js, state.js), the one render path
+//               (render.js) over the registry of views (views.js, viewrequests.js), the
+//               controls (controls.js, inputs.js), the plot in view on a phone (phone.js)
+//               and the requests to the server (api.js)
+//   models/     the model computed in the page: the curves (model.js), the integrator
+//               and the ramp's and the loop's dynamic models (loopworker.js runs the
+//               loop off the main thread)
+//   plots/      the four model plots (plots.js, modelviews.js), the colours, the live
+//               drawing while a hand moves (livedraw.js, axes.js) and Plotly's
+//               (surfaces.js, draw.js), and the exports
+//   ramp/       the ramp experiment and the simulated break-away points
+//   loop/       the control loop: its state, controls, plots and sentence
+//   datapanel/  measured data: the fit, its tables and figures, the quiz, the outputs
+//   teaching/   the first minute's introduction, pin, sweep and the guided tour
 //
 // For tests and scripts: #plots carries data-ready="true|false" and data-frame=<count>;
 // window.breakaway.ready() resolves once the plots show the current state (or its
 // inline errors), window.breakaway.simReady() once the simulation points are settled.
 
-import { getJSON } from "./api.js";
-import { PARAMS, buildControls, paramSpec, setParams, writeControls } from "./controls.js";
-import { fitReady, fitReport, initDataPanel } from "./datapanel.js";
-import { explorerParams, measuredOverlay } from "./fitparams.js";
-import { setState, wireControls } from "./inputs.js";
-import { wireLessons } from "./lessons.js";
+import { getJSON } from "./page/api.js";
+import {
+  PARAMS, buildControls, controlLabel, paramList, paramSpec, setParams, writeControls,
+} from "./page/controls.js";
+import { fitReady, fitReport, initDataPanel } from "./datapanel/datapanel.js";
+import { explorerParams, measuredOverlay } from "./datapanel/fitparams.js";
+import { setState, wireControls } from "./page/inputs.js";
+import { wireIntro } from "./teaching/intro.js";
+import { wireLessons } from "./teaching/lessons.js";
+import { loopSpec } from "./loop/loopstate.js";
 import {
   fittedLoop, initLoop, loopReady, openLoopView,
-} from "./loopview.js";
-import "./modelviews.js";
-import { PALETTE } from "./palette.js";
-import { initPhone } from "./phone.js";
-import { wireRamp } from "./rampview.js";
-import { SETTLE_MS, refresh, showServerError } from "./render.js";
-import { wireSimulation } from "./simulation.js";
-import { fromQuery, toQuery } from "./state.js";
+} from "./loop/loopview.js";
+import "./plots/modelviews.js";
+import { initPhone } from "./page/phone.js";
+import { wireRamp } from "./ramp/rampview.js";
+import { SETTLE_MS, refresh, showServerError } from "./page/render.js";
+import { wireSimulation } from "./ramp/simulation.js";
+import { fromQuery, toQuery } from "./page/state.js";
 import {
   $, app, setBusy, updateSimBusy, whenIdle,
-} from "./store.js";
-import { surfaceStats } from "./surfaces.js";
-import { withTraces } from "./teach.js";
-import { viewsBusy } from "./viewrequests.js";
-import { registerOverlay } from "./views.js";
+} from "./page/store.js";
+import { surfaceStats } from "./plots/surfaces.js";
+import { withTraces } from "./teaching/teach.js";
+import { viewsBusy } from "./page/viewrequests.js";
+import { registerOverlay } from "./page/views.js";
 
 /** The measured points of a fit, on the plot that matches the data's kind. */
 registerOverlay((figures) => {
@@ -47,54 +56,34 @@ registerOverlay((figures) => {
   }]);
 });
 
-function wireTabs() {
-  const tabs = [...document.querySelectorAll('[role="tab"]')];
-  const select = (tab) => {
-    for (const other of tabs) {
-      const selected = other === tab;
-      other.setAttribute("aria-selected", String(selected));
-      other.tabIndex = selected ? 0 : -1;
-      $(other.getAttribute("aria-controls")).hidden = !selected;
-    }
-  };
-  for (const [i, tab] of tabs.entries()) {
-    tab.addEventListener("click", () => select(tab));
-    tab.addEventListener("keydown", (event) => {
-      const step = { ArrowRight: 1, ArrowLeft: -1 }[event.key];
-      if (!step) return;
-      const next = tabs[(i + step + tabs.length) % tabs.length];
-      next.focus();
-      select(next);
-    });
-  }
-}
-
 /** The data panel's "Use these parameters": fitted values into the state (and the URL),
- *  slider ranges widened to the data's scale, and the measured points overlaid. */
-function applyFitted(values, { ranges = {}, measured = null } = {}) {
+ *  in the data's units, slider ranges widened to the data's scale, and the measured
+ *  points overlaid; the state set, or false before the explorer is ready. */
+function applyFitted(values, { ranges = {}, measured = null, units = null } = {}) {
   if (!app.state || !app.defaults) return false;
   for (const [name, range] of Object.entries(ranges)) {
     const spec = paramSpec(name);
     if (spec) Object.assign(spec, range);
   }
   app.measured = measured;
-  setState({ ...app.state, ...values });
-  return true;
+  setState({ ...app.state, ...values, units: units ?? app.state.units });
+  return app.state;
 }
 
 /** The data panel's "Try this model in a control loop": the fitted model in the plant
  *  (the loop carried to its scale), or only in the compensator; the loop in view. */
 function tryFittedInLoop(job, { compensatorOnly }) {
   if (!app.state || !app.defaults) return false;
-  const { values, notes, ranges } = explorerParams(job.report);
+  const { values, notes, ranges, units } = explorerParams(job.report);
   const loop = fittedLoop(values, compensatorOnly);
-  const applied = compensatorOnly
-    ? applyFitted(loop, { measured: app.measured })
-    : applyFitted({ ...values, ...loop }, { ranges, measured: measuredOverlay(job) });
-  if (!applied) return false;
+  const state = compensatorOnly
+    ? applyFitted(loop, { measured: app.measured, units })
+    : applyFitted({ ...values, ...loop }, { ranges, measured: measuredOverlay(job), units });
+  if (!state) return false;
   openLoopView();
-  const list = (part) => Object.entries(part).filter(([, v]) => typeof v === "number")
-    .map(([name, value]) => `${name} = ${value}`).join(", ");
+  const specOf = (name) => paramSpec(name) ?? loopSpec(name);
+  const list = (part) => paramList(Object.keys(part).filter((name) => typeof part[name] === "number"),
+    state, { values: part, specOf });
   return compensatorOnly
     ? `The compensator takes the fitted model (${list(values)}); the plant keeps the sliders.`
     : `The plant takes the fitted model (${list(values)}) and the loop its scale: ${list(loop)}.`
@@ -113,7 +102,8 @@ function fillMenus() {
   for (const spec of PARAMS) {
     const option = document.createElement("option");
     option.value = spec.name;
-    option.textContent = spec.label;
+    option.dataset.labelOf = spec.name;
+    option.textContent = controlLabel(spec, null);
     $("sweep-param").append(option);
   }
   $("sweep-param").value = "V";
@@ -123,7 +113,6 @@ async function init() {
   const [response] = await Promise.all([getJSON("/api/presets"), initLoop()]);
   setParams(response.parameters);
   buildControls(document);
-  wireTabs();
   initPhone();
   initDataPanel({
     applyParams: applyFitted, tryInLoop: tryFittedInLoop, explorerS: () => app.state?.s,
@@ -132,7 +121,6 @@ async function init() {
   app.presets = response.presets;
   fillMenus();
   app.state = fromQuery(window.location.search, app.defaults);
-  document.body.classList.toggle("present", Boolean(app.state.present));
   $("present").checked = Boolean(app.state.present);
   window.history.replaceState(null, "", toQuery(app.state));
   writeControls(app.state);
@@ -140,6 +128,7 @@ async function init() {
   wireSimulation();
   wireRamp();
   wireLessons(setState);
+  wireIntro();
   refresh();
 }
 

@@ -8,16 +8,12 @@ exists, else Playwright's own browser. A browser that cannot launch FAILS the te
 from __future__ import annotations
 
 import os
-import socket
-import subprocess
-import sys
-import time
-import urllib.request
 from pathlib import Path
 
 import pytest
 
 from browser_model import wait_ready
+from live_server import serve
 
 BROWSER_ARGS = ["--no-sandbox", "--disable-gpu", "--disable-background-networking",
                 "--disable-component-update", "--disable-sync"]
@@ -33,42 +29,10 @@ def chromium_path() -> str | None:
     return None  # Playwright's bundled browser
 
 
-def _free_port() -> int:
-    with socket.socket() as sock:
-        sock.bind(("127.0.0.1", 0))
-        return sock.getsockname()[1]
-
-
 @pytest.fixture(scope="session")
 def server_url():
-    port = _free_port()
-    log = open(Path(os.environ.get("TMPDIR", "/tmp")) / f"breakaway-browser-{port}.log", "w")
-    process = subprocess.Popen([sys.executable, "-m", "breakaway", "serve", "--host",
-                                "127.0.0.1", "--port", str(port)], stdout=log,
-                               stderr=subprocess.STDOUT)
-    url = f"http://127.0.0.1:{port}"
-    try:
-        deadline = time.monotonic() + 60
-        while True:
-            if process.poll() is not None:
-                pytest.fail(f"the server exited with {process.returncode}; see {log.name}")
-            try:
-                with urllib.request.urlopen(f"{url}/api/health", timeout=1) as response:
-                    if response.status == 200:
-                        break
-            except OSError:
-                pass
-            if time.monotonic() > deadline:
-                pytest.fail("the server did not answer /api/health within 60 s")
-            time.sleep(0.1)
+    with serve() as url:
         yield url
-    finally:
-        process.terminate()
-        try:
-            process.wait(timeout=10)
-        except subprocess.TimeoutExpired:
-            process.kill()
-        log.close()
 
 
 @pytest.fixture(scope="session")

@@ -126,7 +126,9 @@ def test_a_pointer_drag_is_drawn_live_and_asks_the_server_once_released(explorer
     explorer.page.add_init_script(RECORD)
     explorer.open("?sim=0")
     page = explorer.page
-    box = page.get_by_label("k [N/s] slider", exact=True).bounding_box()
+    slider = page.get_by_label("k [N/s] slider", exact=True)
+    slider.scroll_into_view_if_needed()
+    box = slider.bounding_box()
     y = box["y"] + box["height"] / 2
     start = page.evaluate("(() => { const r = document.getElementById('k-range');"
                           " return (r.value - r.min) / (r.max - r.min); })()")
@@ -171,7 +173,7 @@ def test_the_live_frame_keeps_a_zoom_and_a_hidden_trace(explorer):
 #: Plotly's own range and tick labels of each axis of each plot, and the live drawing's
 #: for the same figure.
 AXES = """async () => {
-  const { liveAxes } = await import('/js/livedraw.js');
+  const { liveAxes } = await import('/js/plots/livedraw.js');
   const out = [];
   for (const gd of document.querySelectorAll('#plots .js-plotly-plot')) {
     const mine = liveAxes(gd, {data: gd.data, layout: gd.layout});
@@ -232,7 +234,7 @@ def test_a_step_of_the_mass_draws_the_ramp_live_from_the_pages_own_run(explorer)
 #: A live frame for plot `id` with its curves' y doubled, from the surfaces module itself:
 #: the draws counted before and after, and whether the graph then shows the canvas.
 LIVE_DOUBLED = """async (id) => {
-  const { live, surfaceStats } = await import('/js/surfaces.js');
+  const { live, surfaceStats } = await import('/js/plots/surfaces.js');
   const gd = document.getElementById('plot-' + id);
   const before = surfaceStats.live;
   const figure = {data: gd.data.map((trace) => ({...trace, y: Array.from(trace.y ?? [], (v) => 2 * v)})),

@@ -1,4 +1,4 @@
-"""The control loop view (MODEL.md §5b): its plots and sentence follow Ki, the friction
+"""The control loop view (a PID position loop on the model's friction): its plots and sentence follow Ki, the friction
 sliders and the compensation, live and settled; its numbers are those of
 ``breakaway.loop.loop_experiment`` run here on the same parameters; its state is in the
 URL; the tour reaches it; and on a phone it is one card of the strip."""
@@ -270,7 +270,7 @@ def test_the_tour_ends_on_the_loop_hunting_then_settling(explorer):
     for _ in range(7):
         page.get_by_role("button", name="Next step").click()
     explorer.ready()
-    assert "The control loop (MODEL.md §5b)" in page.locator("#tour-step").inner_text()
+    assert "The control loop: a PID position loop" in page.locator("#tour-step").inner_text()
     assert explorer.state()["Ki"] == LOOP["Ki"]  # the step starts from the loop's defaults
     loop_ready(explorer)
     assert sentence(explorer).startswith("The loop hunts")
@@ -329,7 +329,7 @@ def test_the_steepest_fall_the_sentence_quotes_is_the_stribeck_curves(explorer, 
     from breakaway.steady import steady_state_force
 
     explorer.open("?sim=0")
-    fall = explorer.page.evaluate("""async (delta) => (await import('/js/loopexplain.js'))
+    fall = explorer.page.evaluate("""async (delta) => (await import('/js/loop/loopexplain.js'))
         .steepestFall({Fc: 1, Fs: 1.5, V: 100, delta})""", delta)
     v = np.geomspace(1e-3, 1e4, 400_001)
     slope = -np.gradient(steady_state_force(v, 1.0, 1.5, 100.0, delta, 0.0), v)
@@ -347,7 +347,7 @@ def test_axe_finds_nothing_serious_on_the_loop_on_a_phone(explorer):
     page = explorer.page
     page.set_viewport_size(PHONE)
     explorer.open("?sim=0&ref=sine&comp=exact")
-    page.get_by_role("button", name="Control", exact=True).click()
+    page.get_by_role("button", name="Control loop", exact=True).click()
     loop_ready(explorer)
     # the loop's card, its sentence, its table and its controls (the other cards' captions
     # scroll on a phone without a focusable element: axe's scrollable-region-focusable)

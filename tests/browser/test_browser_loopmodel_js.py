@@ -1,4 +1,4 @@
-"""The position loop run in the page (frontend/js/loopmodel.js) against the server's
+"""The position loop run in the page (frontend/js/models/loopmodel.js) against the server's
 (breakaway.loop.loop_experiment on the body POST /api/loop takes), and the page's choice
 between its own run and the server's."""
 
@@ -55,7 +55,7 @@ def own_error(body: dict) -> dict:
 
 def page_run(explorer, body: dict, max_steps: int | None = None):
     return explorer.page.evaluate(
-        """async ([body, n]) => (await import('/js/loopmodel.js')).loopExperiment(
+        """async ([body, n]) => (await import('/js/models/loopmodel.js')).loopExperiment(
              body, {h: 10, w: 5, f: 0.5, duration: 5}, n ?? undefined)""", [body, max_steps])
 
 

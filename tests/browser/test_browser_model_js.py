@@ -1,4 +1,4 @@
-"""The model's curves computed in the page (frontend/js/model.js) against the Python
+"""The model's curves computed in the page (frontend/js/models/model.js) against the Python
 model (breakaway.frame.explore_frame), for the frames drawn while a hand moves a slider."""
 
 from __future__ import annotations
@@ -13,7 +13,8 @@ pytestmark = pytest.mark.browser
 
 #: Parameter sets that take each branch: the defaults, velocity strengthening (δ < 0),
 #: viscous friction, a steep Stribeck fall where ẋ·Fss(ẋ) turns back (the self-consistent
-#: root by bisection), a stage in SI units, and Fs = Fc.
+#: root by bisection), a stage in SI units, Fs = Fc, and a Stribeck step (δ = 1000, where
+#: (v/V)^δ overflows a float).
 CASES = [
     {},
     {"delta": -1.5, "F_hat": "self"},
@@ -22,6 +23,7 @@ CASES = [
     {"Fc": 12.0, "Fs": 15.0, "V": 0.002, "delta": 0.7, "s": 2e5, "sigma": 40.0, "k": 300.0,
      "F_hat": "Fc"},
     {"Fc": 1.5, "Fs": 1.5, "F_hat": "self", "k": 0.03},
+    {"delta": 1000.0, "V": 2.0, "F_hat": "self"},
 ]
 
 #: Both sides evaluate the same formulas in the same order in float64; exp, log and pow
@@ -31,7 +33,7 @@ RTOL = 1e-12
 
 def page_frame(explorer, params: dict) -> dict:
     return explorer.page.evaluate(
-        """async (p) => (await import('/js/model.js')).modelFrame(p)""", params)
+        """async (p) => (await import('/js/models/model.js')).modelFrame(p)""", params)
 
 
 def assert_close(actual, expected, what: str) -> None:

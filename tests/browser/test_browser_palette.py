@@ -75,7 +75,7 @@ def test_the_simulation_reproduces_the_issues_figure():
 def test_every_group_of_the_palette_keeps_its_colours_apart(explorer):
     explorer.open("?sim=0")
     groups, dark = explorer.page.evaluate("""async () => {
-        const { PALETTE, DARK_INK } = await import('/js/palette.js');
+        const { PALETTE, DARK_INK } = await import('/js/plots/palette.js');
         return [PALETTE, DARK_INK]; }""")
     assert set(groups) >= {"stribeck", "hysteresis", "phase", "breakaway", "ramp",
                            "loopPosition", "loopError", "loopForce"}

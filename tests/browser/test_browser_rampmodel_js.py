@@ -1,4 +1,4 @@
-"""The ramp experiment run in the page (frontend/js/rampmodel.js) against the server's
+"""The ramp experiment run in the page (frontend/js/models/rampmodel.js) against the server's
 (breakaway.ramp.ramp_experiment), and the page's choice between its own run and the
 server's."""
 
@@ -39,7 +39,7 @@ def body(case: dict) -> dict:
 
 def page_run(explorer, params: dict, max_steps: int | None = None):
     return explorer.page.evaluate(
-        """async ([p, n]) => (await import('/js/rampmodel.js')).rampExperiment(p, n ?? undefined)""",
+        """async ([p, n]) => (await import('/js/models/rampmodel.js')).rampExperiment(p, n ?? undefined)""",
         [params, max_steps])
 
 

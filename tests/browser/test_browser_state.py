@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from urllib.parse import parse_qs, urlparse
 
+import numpy as np
 import pytest
 
 from breakaway.params import DEFAULTS, PRESET_DESCRIPTIONS, PRESETS
@@ -234,3 +235,56 @@ def test_copy_link_says_so_next_to_the_button(explorer, granted):
     assert 0 <= shown["y"] - (near["y"] + near["height"]) < 40
     assert shown["y"] + shown["height"] <= page.viewport_size["height"]
     page.context.clear_permissions()
+
+
+def test_the_delta_slider_offers_only_valid_values(explorer):
+    # δ = 0 is no model (|δ| ≥ 0.05): the slider steps from −0.05 to 0.05, as a drag over
+    # every position and the arrow keys across zero show
+    explorer.open("?sim=0")
+    page = explorer.page
+    slider = page.get_by_label("δ (delta) slider", exact=True)
+    offered = page.evaluate("""() => {
+      const range = document.getElementById('delta-range');
+      const out = [];
+      for (let p = Number(range.min); p <= Number(range.max); p++) {
+        range.value = String(p);
+        range.dispatchEvent(new Event('input', {bubbles: true}));
+        out.push([window.breakaway.state().delta,
+                  document.getElementById('delta-error').hidden]);
+      }
+      return out;
+    }""")
+    deltas = [delta for delta, _ in offered]
+    assert all(hidden for _, hidden in offered)
+    assert min(abs(d) for d in deltas) == pytest.approx(0.05)
+    assert deltas[0] == -4 and deltas[-1] == 4 and len(set(deltas)) == len(deltas) == 160
+    steps = np.diff(deltas)
+    assert np.allclose(steps[steps < 0.07], 0.05) and list(np.round(steps[steps >= 0.07], 9)) == [0.1]
+    explorer.ready()
+    page.get_by_label("δ (delta)", exact=True).fill("-0.1")
+    explorer.ready()
+    seen = []
+    for _ in range(3):
+        slider.press("ArrowRight")
+        seen.append(explorer.state()["delta"])
+    assert seen == [-0.05, 0.05, 0.1]
+    explorer.ready()
+    assert page.locator("#plots").get_attribute("data-valid") == "true"
+
+
+def test_a_value_typed_just_after_a_valid_change_leaves_every_view_on_that_change(explorer):
+    # the plots keep the last valid state; what was on its way for it (the settled frame,
+    # the ramp and its sentence) is drawn, not dropped
+    explorer.open("?sim=0&k=2")
+    page = explorer.page
+    page.get_by_label("k [N/s] slider", exact=True).press("PageUp")
+    k = explorer.state()["k"]
+    assert k != 2
+    page.get_by_label("Fs [N]", exact=True).fill("abc")
+    explorer.ready()
+    explorer.page.evaluate("window.breakaway.rampReady()")
+    assert page.locator("#plots").get_attribute("data-valid") == "false"
+    assert page.locator("#Fs-error").is_visible()
+    assert explorer.page.evaluate("window.breakaway.viewParams('ramp')")["Fs"] == DEFAULTS["Fs"]
+    assert explorer.traces("breakaway")[f"current k = {k:.4g}"]["x"] == [k]
+    assert f"At k = {k:.3g} N/s" in page.locator("#ba-explain").inner_text()

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import pytest
 
+from breakaway.settings import get_settings
+
 pytestmark = pytest.mark.browser
 
 
@@ -111,3 +113,90 @@ def test_normalised_presets_say_so_and_the_lab_preset_is_si(explorer):
     explorer.ready()
     assert not note.is_visible()
     assert "SI units" in explorer.page.locator("#preset-description").inner_text()
+
+
+def test_a_cold_open_explains_break_away_cites_the_note_and_remembers_its_dismissal(explorer):
+    page = explorer.page
+    explorer.open("?sim=0")
+    page.evaluate("window.localStorage.clear()")
+    explorer.open("?sim=0")
+    intro = page.locator("#intro")
+    assert intro.is_visible()
+    text = intro.inner_text()
+    # what break-away is, what the note claims (author and title), what to try first
+    assert "break-away force" in text and "presliding" in text
+    assert "Ruderman" in text
+    assert "On break-away forces in actuated motion systems with nonlinear friction" in text
+    assert "Try first" in text and "tour" in text
+    # it comes first, above the controls it explains
+    top = page.evaluate("document.getElementById('intro').getBoundingClientRect().top")
+    assert top < page.evaluate("document.getElementById('preset').getBoundingClientRect().top")
+    page.get_by_role("button", name="Hide this introduction").click()
+    assert intro.is_hidden()
+    assert page.evaluate("document.activeElement.id") == "preset"
+    explorer.open("?sim=0")
+    assert intro.is_hidden()  # remembered
+    page.get_by_role("button", name="What is this?").click()
+    assert intro.is_visible()
+    explorer.open("?sim=0")
+    assert intro.is_visible()
+    # starting the tour from it puts it away and starts the tour
+    page.get_by_role("button", name="Take the guided tour").click()
+    explorer.ready()
+    assert intro.is_hidden() and page.locator("#tour-step").inner_text().startswith("Step 1 of")
+    page.evaluate("window.localStorage.clear()")
+
+
+def test_the_tour_brings_every_steps_card_into_view(explorer):
+    explorer.open("?sim=0")
+    page = explorer.page
+    page.emulate_media(reduced_motion="reduce")
+    page.get_by_role("button", name="Start the tour").click()
+    cards = []
+    while True:
+        explorer.ready()
+        step = page.locator("#tour-step").inner_text()
+        plot = page.evaluate("""() => {
+          const cards = [...document.querySelectorAll('.plot-card')].filter((card) => {
+            const box = card.getBoundingClientRect();
+            return box.top >= -1 && box.top < window.innerHeight - 100;
+          });
+          return cards.map((card) => card.id);
+        }""")
+        cards.append((step, plot))
+        if page.get_by_role("button", name="Next step").is_disabled():
+            break
+        page.get_by_role("button", name="Next step").click()
+    expected = ["card-stribeck", "card-hysteresis", "card-phase", "card-phase", "card-breakaway",
+                "card-ramp", "card-breakaway", "card-loop", "card-loop"]
+    assert len(cards) == len(expected)
+    for (step, shown), card in zip(cards, expected):
+        assert card in shown, (step, shown)
+
+
+def test_views_are_named_as_a_student_would(explorer):
+    explorer.open("?sim=0")
+    page = explorer.page
+    assert page.locator('[role="tab"]').count() == 0  # one page: no lone tab
+    links = page.get_by_role("navigation", name="On this page").get_by_role("link").all_inner_texts()
+    assert links == ["The model", "Control loop", "Your data", "Glossary"]
+    explorer.page.set_viewport_size({"width": 390, "height": 844})
+    picker = page.get_by_role("group", name="Plot in view", exact=True).get_by_role("button").all_inner_texts()
+    assert picker == ["Stribeck", "Hysteresis", "Phase", "Break-away", "Ramp", "Control loop"]
+
+
+def test_nothing_the_page_shows_names_a_file_a_student_does_not_have(explorer):
+    frontend = get_settings().frontend_dir
+    for path in [*frontend.rglob("*.js"), *frontend.rglob("*.html"), *frontend.rglob("*.css")]:
+        if "vendor" in path.parts:
+            continue
+        text = path.read_text(encoding="utf-8")
+        assert "MODEL.md" not in text and "../shared" not in text, path
+    explorer.open("?sim=0")
+    page = explorer.page
+    page.get_by_role("button", name="Start the tour").click()
+    while not page.get_by_role("button", name="Next step").is_disabled():
+        assert "§" not in page.locator("#tour-step").inner_text()
+        page.get_by_role("button", name="Next step").click()
+    shown = page.evaluate("document.body.innerText")
+    assert ".md" not in shown and "§" not in shown

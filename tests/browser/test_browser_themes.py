@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import pytest
 
+from browser_model import until
+
 pytestmark = pytest.mark.browser
 
 PLOTS = ("stribeck", "hysteresis", "phase", "breakaway", "ramp", "loop-position", "loop-error",
@@ -169,3 +171,52 @@ def test_every_tick_label_fits_inside_its_plot(explorer, viewport, present):
     explorer.open(f"?sim=0&present={present}")
     assert explorer.page.locator("#plots .xtick text").count() > 0
     assert explorer.page.evaluate(TICKS_OUTSIDE) == []
+
+
+#: Each plot's drawing against its box and its card: [id, svg width − box width, the
+#: drawing inside its card].
+FITS = """() => [...document.querySelectorAll('.plot, .fit-plot')].filter((p) => p.offsetParent).map((p) => {
+  const card = p.closest('.plot-card').getBoundingClientRect();
+  const svg = p.querySelector('svg.main-svg');
+  const box = svg ? svg.getBoundingClientRect() : null;
+  return [p.id, box ? Math.round(box.width - p.clientWidth) : null,
+          Boolean(box) && box.left >= card.left - 1 && box.right <= card.right + 1
+            && box.top >= card.top - 1 && box.bottom <= card.bottom + 1];
+})"""
+
+
+def laid_out(explorer) -> list:
+    """Every plot's fit once the page has laid them out at their boxes' sizes."""
+    until(explorer.page, f"({FITS})().every(([, gap]) => gap !== null && Math.abs(gap) <= 1)", seconds=10)
+    return explorer.page.evaluate(FITS)
+
+
+@pytest.mark.parametrize("viewport", [(390, 844), (1280, 800), (1920, 1080)])
+def test_presentation_mode_toggled_in_place_lays_every_plot_out_in_its_card(explorer, viewport):
+    explorer.page.set_viewport_size({"width": viewport[0], "height": viewport[1]})
+    explorer.open("?sim=0")
+    explorer.page.evaluate("window.breakaway.loopReady()")
+    before = {plot: width for plot, width, _ in explorer.page.evaluate(
+        "() => [...document.querySelectorAll('.plot')].map((p) => [p.id, 0, p.clientWidth])")}
+    explorer.page.get_by_label("Presentation mode (large type, heavy lines)").check()
+    explorer.ready()
+    fits = laid_out(explorer)
+    assert len(fits) >= 8
+    assert all(inside for _, _, inside in fits), fits
+    # and every card inside the page, which never scrolls sideways
+    assert explorer.page.evaluate("document.documentElement.scrollWidth") <= viewport[0]
+    # the boxes did change (another grid, taller plots): a drawing at its old size would not fit
+    after = explorer.page.evaluate(
+        "() => Object.fromEntries([...document.querySelectorAll('.plot')].map((p) => [p.id, p.clientWidth]))")
+    if viewport[0] > 720:
+        assert any(after[plot] != width for plot, width in before.items())
+
+
+def test_a_phone_turned_lays_the_plots_out_anew(explorer):
+    explorer.page.set_viewport_size({"width": 390, "height": 844})
+    explorer.open("?sim=0")
+    explorer.page.set_viewport_size({"width": 844, "height": 390})
+    fits = laid_out(explorer)
+    assert all(inside for _, _, inside in fits), fits
+    explorer.page.set_viewport_size({"width": 390, "height": 844})
+    assert all(inside for _, _, inside in laid_out(explorer))

@@ -151,7 +151,7 @@ def test_panel_layout_at_desktop_and_phone_width(explorer):
                     panel: box(document.getElementById('data-panel')),
                     plots: box(document.getElementById('plots')),
                     controls: box(document.getElementById('controls')),
-                    fitPlots: [...document.querySelectorAll('.fit-plot')].map(box)};
+                    fitPlots: [...document.querySelectorAll('.fit-plot')].filter((el) => el.offsetParent).map(box)};
         }""")
         assert layout["scrollWidth"] <= width
         assert layout["panel"]["top"] >= layout["plots"]["bottom"]  # below the plots
@@ -226,7 +226,8 @@ def test_use_these_parameters_moves_the_sliders(explorer):
     assert sliders["Fc"] == slider_position(fitted["Fc"], 0.01, 100)
     assert sliders["Fs"] == slider_position(fitted["Fs"], 0.01, 100)
     assert sliders["V"] == slider_position(fitted["V"], 1e-4, 1e4)
-    assert sliders["delta"] == round((fitted["delta"] + 4) / 0.05)
+    # the δ slider skips δ = 0: positions above it are one fewer
+    assert sliders["delta"] == round((fitted["delta"] + 4) / 0.05) - (fitted["delta"] > 0)
     assert all(str(sliders[name]) != before[name] for name in before)
     # σ ≈ 54 N·s/m is beyond its slider (≤ 10): the range widens to the data's scale
     assert fitted["sigma"] > 10
@@ -442,3 +443,43 @@ def test_a_fitted_curve_sigma_v_to_the_n_is_named_and_not_put_on_the_linear_slid
     n = report["final"]["params"]["n"]
     assert "σ·|v|^n" in note and f"n = {float(f'{n:.6g}'):g}" in note
     assert float(page.get_by_label("σ (sigma) [N·s/m]", exact=True).input_value()) == 0
+
+
+def test_a_time_series_fit_shows_the_hysteresis_and_a_window_of_time(explorer):
+    # F against x, measured and fitted; over time a window of a few cycles, zoomable,
+    # with the whole record in a range slider, not the record as one solid band
+    text = synthetic_csv("timeseries", (), seed=4)
+    data = parse_csv(text.encode())
+    explorer.open("?sim=0")
+    page = explorer.page
+    upload(explorer, text)
+    assert wait_for(explorer, "done", "error") == "done"
+    model = plot_traces(explorer, "fit-plot-model")
+    assert set(model) == {"measured", "base model", "final model"}
+    assert page.evaluate("document.getElementById('fit-plot-model').layout.xaxis.title.text") == "x [m]"
+    # every stride-th row of the record, as the panel's series holds it (4000 at most)
+    stride = -(-data.n // 4000)
+    assert values(model["measured"]["x"]) == pytest.approx(data.columns["x"][::stride], rel=1e-9)
+    assert page.locator("#fit-time-card").is_visible()
+    layout = page.evaluate("""() => { const l = document.getElementById('fit-plot-time').layout;
+        return {range: l.xaxis.range, slider: l.xaxis.rangeslider.visible, title: l.xaxis.title.text}; }""")
+    t = data.columns["t"]
+    assert layout["slider"] is True and layout["title"] == "t [s]"
+    assert layout["range"][0] == t[0] and t[0] < layout["range"][1] < 0.5 * t[-1]
+    # the window holds the record's first six reversals of x (three cycles)
+    x = data.columns["x"][t <= layout["range"][1]]
+    turns = np.count_nonzero(np.diff(np.sign(np.diff(x[::max(1, x.size // 400)]))) != 0)
+    assert 5 <= turns <= 12
+    # steady data have no time
+    upload(explorer, synthetic_csv("steady", (), seed=1))
+    assert wait_for(explorer, "done", "error") == "done"
+    assert page.locator("#fit-time-card").is_hidden()
+
+
+def test_a_correlated_parameter_shows_the_combination_the_data_determine(explorer):
+    explorer.open("?sim=0")
+    tied = {"with": "V", "r": -0.99699, "slope": -613.33, "stderr": 0.01389}
+    said = explorer.page.evaluate("""async (tied) => (await import('/js/datapanel/fitview.js'))
+        .combination('Fc', {Fc: 8.96, V: 0.007036}, tied, 'N')""", tied)
+    combined = 8.96 + 613.33 * 0.007036
+    assert said == f"moves with V (r = −0.997): Fc + 613·V = {combined:.2f} ± 0.014 N is determined"

@@ -110,9 +110,9 @@ def test_only_the_compensator_takes_the_fitted_model(explorer):
                           compensation={"scale": 1.0, "params": {**fitted, "sigma": 0.0}})
     assert shown["rms_error"] == pytest.approx(run["rms_error"], rel=1e-6)
     text = page.locator("#loop-explain").inner_text()
-    assert (f"The compensator uses the fitted model (Fc = {fitted['Fc']:.3g}, Fs = {fitted['Fs']:.3g} N"
-            in text)
-    assert "while the plant has the sliders' (Fc = 1, Fs = 1.5 N, V = 100 m/s)" in text
+    assert (f"The compensator uses the fitted model (Fc = {fitted['Fc']:.4g} N, Fs = {fitted['Fs']:.4g} N, "
+            f"V = {fitted['V']:.4g} m/s)" in text)
+    assert "while the plant has the sliders' (Fc = 1 N, Fs = 1.5 N, V = 100 m/s)" in text
     assert parse_qs(urlparse(page.url).query)["cFs"] == [f"{fitted['Fs']:g}"]
 
 

@@ -18,10 +18,11 @@ from ..settings import get_settings
 from .contract import api_fallback, documented
 from .errors import http_error_handler, request_validation_handler
 from .fitworkers import FitWorkers
+from .guide import mount_guide
 from .jobstore import JobStore
 from .middleware import BodySizeLimit, CatchAll, CompressPages, SameOrigin, SecurityHeaders
-from .routers import (assets, explore, export, fit, health, loop, presets, ramp, samples,
-                      simulate)
+from .routers import (assets, explore, export, fit, health, loop, plan, presets, ramp,
+                      samples, simulate)
 from .simulation import SimulationRunner
 
 #: The API, one router per resource.
@@ -34,6 +35,7 @@ ROUTERS: list[APIRouter] = [
     loop.router,
     fit.router,
     export.router,
+    plan.router,
     samples.router,
     assets.router,
 ]
@@ -61,8 +63,9 @@ def create_app() -> FastAPI:
     settings = get_settings()
     app = FastAPI(title="Breakaway", version=__version__, lifespan=lifespan,
                   docs_url=None, redoc_url=None,
-                  description="Ruderman's break-away friction model: explorer API "
-                              "(MODEL.md §9). Interactive docs at /docs.")
+                  description="Ruderman's break-away friction model: the explorer's and "
+                              "the identification engine's HTTP API. The documentation is "
+                              "at /guide/ (the HTTP API page: /guide/http-api.html).")
     app.state.simulations = SimulationRunner(queue=settings.simulate_queue)
     store = JobStore(settings.data_dir / "jobs.sqlite", max_bytes=settings.jobs_max_bytes,
                      max_age_s=settings.jobs_max_age_s)
@@ -87,6 +90,7 @@ def create_app() -> FastAPI:
                            allow_methods=["GET", "POST", "DELETE"], allow_headers=["Content-Type"],
                            max_age=600)
     app.add_middleware(SameOrigin)
+    mount_guide(app, settings.docs_dir)
     if settings.frontend_dir.is_dir():
         app.mount("/", StaticFiles(directory=settings.frontend_dir, html=True), name="frontend")
     return app

@@ -1,4 +1,4 @@
-"""Pydantic model of ``POST /api/export`` (MODEL.md §9 ``breakaway export``)."""
+"""Pydantic model of ``POST /api/export`` (what ``breakaway export`` writes)."""
 
 from __future__ import annotations
 
@@ -15,12 +15,12 @@ EXPORT_MEDIA = {"text/x-python": {"schema": {"type": "string"}},
 
 
 class ExportRequest(BaseModel):
-    """A §8 report (as ``POST /api/fit`` or ``breakaway fit --json`` gave it) and the
+    """An identification report (as ``POST /api/fit`` or ``breakaway fit --json`` gave it) and the
     language to export its fitted model in."""
 
     model_config = _STRICT
 
-    report: dict[str, Any] = Field(description="the identification report (MODEL.md §8)")
+    report: dict[str, Any] = Field(description="the identification report, as POST /api/fit gave it")
     lang: Literal["python", "c", "json"] = Field(
         description="python: steady(v), class Presliding with step(x, t); c: bk_steady, "
                     "bk_state, bk_init, bk_step (C99, libm); json: parameters, effects, units")

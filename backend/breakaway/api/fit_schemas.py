@@ -1,4 +1,4 @@
-"""Pydantic models of the fit endpoints (MODEL.md §8, §9)."""
+"""Pydantic models of the fit endpoints."""
 
 from __future__ import annotations
 
@@ -13,6 +13,15 @@ class ModelFit(BaseModel):
     determined: dict[str, bool]
     rmse: float | None
     bic: float | None
+
+
+class Covariance(BaseModel):
+    names: list[str]
+    matrix: list[list[float]]
+
+
+class FinalFit(ModelFit):
+    covariance: Covariance | None = None
 
 
 class FitStep(ModelFit):
@@ -46,7 +55,7 @@ class CandidateVerdict(BaseModel):
 
 
 class FitReport(BaseModel):
-    """The §8 identification report."""
+    """The identification report."""
 
     model_config = ConfigDict(extra="allow")
 
@@ -56,7 +65,7 @@ class FitReport(BaseModel):
     base: ModelFit
     steps: list[FitStep]
     effects: list[str]
-    final: ModelFit
+    final: FinalFit
     error_before: float | None
     error_after: float | None
     heldout: HeldOut

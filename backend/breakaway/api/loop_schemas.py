@@ -1,4 +1,4 @@
-"""Pydantic models of ``POST /api/loop`` (MODEL.md §5b, §9): the position loop.
+"""Pydantic models of ``POST /api/loop``: the position loop.
 
 The plant's fields are those of the other simulations (:class:`~.schemas.PlantRequest`);
 the controller, reference and compensation are objects of their own. Every omitted
@@ -86,7 +86,7 @@ class Compensation(BaseModel):
 
 
 class LoopRequest(PlantRequest):
-    """The §5b loop: the plant (fields as ``/api/simulate``; LuGre takes ``z_ba`` too,
+    """The position loop: the plant (fields as ``/api/simulate``; LuGre takes ``z_ba`` too,
     the fraction of its steady deflection its bristle reaches at break-away), the
     controller, the reference, the run's length and the compensation."""
 

@@ -44,7 +44,11 @@ class SecurityHeaders:
 
         async def send_with_headers(message: Message) -> None:
             if message["type"] == "http.response.start":
-                message["headers"] = list(message.get("headers", [])) + _APP_HEADERS
+                headers = list(message.get("headers", []))
+                # a response with a policy of its own (a documentation page allowing its
+                # inline scripts by hash, api/guide.py) keeps it
+                own = any(name.lower() == b"content-security-policy" for name, _ in headers)
+                message["headers"] = headers + (_COMMON if own else _APP_HEADERS)
             await send(message)
 
         await self.app(scope, receive, send_with_headers)

@@ -1,6 +1,6 @@
-"""Pydantic request and response models of the HTTP API (MODEL.md §9).
+"""Pydantic request and response models of the HTTP API.
 
-Every constraint of MODEL.md §1 is carried here, so a bad value is a 422 that names the
+Every constraint of the model's parameters is carried here, so a bad value is a 422 that names the
 field before any model code runs. Requests are strict: numbers must be JSON numbers
 (no strings, no booleans), finite (no NaN/Infinity), and unknown fields are rejected.
 """
@@ -22,7 +22,7 @@ from pydantic import (
 from ..params import DEFAULTS, LUGRE_1995, MAGNITUDE
 from ..settings import get_settings
 
-#: MODEL.md §1: δ ≠ 0, and |δ| ≥ 0.05 in practice.
+#: δ ≠ 0, and |δ| ≥ 0.05 in practice.
 MIN_ABS_DELTA = 0.05
 
 _STRICT = ConfigDict(strict=True, allow_inf_nan=False, extra="forbid")
@@ -208,7 +208,7 @@ class SimulateRequest(PlantRequest):
 
 
 class RampRequest(SimulateRequest):
-    """The ramp experiment at one rate (MODEL.md §9 ``/api/ramp``); fields as
+    """The ramp experiment at one rate (``POST /api/ramp``); fields as
     ``/api/simulate`` with a single ``k``, and ``F_hat`` for the E13 value beside it."""
 
     k: Positive = Field(..., description="force rate [N/s], > 0")

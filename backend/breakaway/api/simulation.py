@@ -61,14 +61,14 @@ def run_simulation(model: str, k: list[float], params: dict[str, float],
 
 
 def run_ramp(model: str, k: float, params: dict[str, float], max_steps: int) -> dict[str, Any]:
-    """Worker entry point: one ramp run as time series (MODEL.md §9 ``/api/ramp``)."""
+    """Worker entry point: one ramp run as time series (``POST /api/ramp``)."""
     from ..ramp import ramp_experiment
 
     return ramp_experiment(model, k, params, max_steps)
 
 
 def run_loop(args: dict[str, Any]) -> dict[str, Any]:
-    """Worker entry point: one run of the position loop (MODEL.md §9 ``/api/loop``),
+    """Worker entry point: one run of the position loop (``POST /api/loop``),
     its time series as numpy arrays (sent as float32 JSON by the route)."""
     from ..loop import loop_experiment
 

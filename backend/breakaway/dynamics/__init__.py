@@ -1,5 +1,5 @@
 """Dynamic simulation of the ramp experiment (E7), of the LuGre comparison model, and
-of either in a position loop (MODEL.md §5b).
+of either in a position loop.
 
 All models are written with one signature (python-control's ``nlsys`` idea) and
 integrated in one place, :func:`breakaway.dynamics.integrator._integrate`:
@@ -19,7 +19,7 @@ The integrator is an adaptive Dormand–Prince 5(4) scheme compiled with numba. 
 accepted step's cubic Hermite interpolant is scanned for events, which are then located
 by bisection, so a short excursion inside one step is not missed, and the step restarts
 exactly at a reversal (a change of sign of ẋ starts a new branch at the current x and
-F, MODEL.md §5). The models are selected by id inside compiled code (:mod:`.table`)
+F). The models are selected by id inside compiled code (:mod:`.table`)
 because numba cannot cache functions that receive jitted functions as arguments.
 
 With velocity weakening the quasi-static branch of (E12) is unstable: the body chatters
@@ -27,7 +27,7 @@ through many reversals before it breaks away, and at small rates the break-away
 becomes sensitive to round-off (a chaotic transient). There the result is defined only
 to the scatter between tolerances, which the tests and the benchmark measure.
 Modules: :mod:`.ramp_model` (E7 with E6'), :mod:`.lugre` (LuGre), :mod:`.loop_model`
-(the §5b loop around either), :mod:`.table` (the model table), :mod:`.integrator` (the
+(the position loop around either), :mod:`.table` (the model table), :mod:`.integrator` (the
 compiled scheme, shared by all), :mod:`.runs` (its Python side), :mod:`.common` (g of
 E2 compiled, event codes).
 """
@@ -57,8 +57,7 @@ def simulate_breakaway(k, Fc, Fs, V, delta, s=1.0, sigma=0.0, m=DEFAULTS["m"], z
     """Break-away of the ramp experiment ``m·ẍ + F = k·t`` (E7) for each rate.
 
     Starts at rest in the virgin presliding state; F follows (E6') with exact reversal
-    handling. Break-away is the first time ``s·|x − x_r| >= z*`` with ``d = +1``
-    (MODEL.md §5).
+    handling. Break-away is the first time ``s·|x − x_r| >= z*`` with ``d = +1``.
 
     Parameters
     ----------
@@ -151,7 +150,7 @@ LOOP_EVENT_CAPACITY = 20_000
 
 def simulate_loop(params, controller, reference, duration, compensation=None,
                   model="presliding", points=2000, rtol=DEFAULT_RTOL, max_steps=2_000_000):
-    """The position loop of MODEL.md §5b: ``m·ẍ + F = u`` under PID control.
+    """The position loop: ``m·ẍ + F = u`` under PID control.
 
     ``u = Kp·e + Ki·∫e dt + Kd·(ṙ − ẋ) + c·F_m(ṙ)``, ``e = r − x``, ``|u| <= u_max``:
     the derivative acts on the velocity error (no kick at a step), and only the output

@@ -10,7 +10,7 @@ from numba import njit
 
 @njit(cache=True)
 def _g(v, Fc, Fs, V, delta):
-    """g(v) of (E2) for a scalar v, with the limits of MODEL.md §2 at v = 0."""
+    """g(v) of (E2) for a scalar v, with its limits at v = 0 (Fs for δ > 0, Fc for δ < 0)."""
     av = abs(v)
     if av == 0.0:
         return Fs if delta > 0 else Fc

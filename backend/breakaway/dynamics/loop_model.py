@@ -1,4 +1,4 @@
-"""The position loop of MODEL.md §5b with either friction model: its compiled
+"""The position loop (PID control of m·ẍ + F = u) with either friction model: its compiled
 right-hand side, force, guard and jump, and its problem set-up.
 
     m·ẍ + F(ẋ, z) = u,   u = Kp·e + Ki·∫e dt + Kd·(ṙ − ẋ) + c·F_m(ṙ),   e = r − x

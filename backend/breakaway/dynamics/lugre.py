@@ -1,4 +1,4 @@
-"""The LuGre comparison model (Canudas de Wit et al. 1995, MODEL.md §5) under the same
+"""The LuGre comparison model (Canudas de Wit et al. 1995) under the same
 ramp: its compiled right-hand side and force, the first-maximum stop, and its problem
 set-up.
 

@@ -155,7 +155,7 @@ def _run_grid(model_id, p, y0, mem0, t_end, atol, rtol, max_steps, n_grid, event
 
 @dataclass(frozen=True)
 class LoopRun:
-    """One run of the position loop (MODEL.md §5b) on its output grid plus events.
+    """One run of the position loop on its output grid plus events.
 
     Attributes
     ----------
@@ -169,7 +169,7 @@ class LoopRun:
         Where the run ended [s]: the requested duration, or earlier when the step budget
         ran out or the loop ran away.
     runaway : bool
-        Whether the loop ran away (|e| beyond the bound of :mod:`.loop_model`): unstable.
+        Whether the loop ran away (``|e|`` beyond the bound of :mod:`.loop_model`): unstable.
     reversals : int
         Changes of sign of ẋ over the run.
     """

@@ -16,7 +16,7 @@ from .ramp_model import (_presliding_force, _presliding_guard, _presliding_jump,
                          _presliding_rhs, _presliding_stop)
 
 #: the ramp experiment (E7) with (E6'), LuGre under the same ramp, and the position
-#: loop of MODEL.md §5b with either friction model
+#: loop with either friction model
 MODEL_PRESLIDING, MODEL_LUGRE, MODEL_LOOP_PRESLIDING, MODEL_LOOP_LUGRE = 0, 1, 2, 3
 
 

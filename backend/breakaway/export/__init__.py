@@ -1,5 +1,5 @@
-"""The fitted model of a §8 identification report as standalone code (MODEL.md §9
-``breakaway export``): a Python module, a C99 file or JSON.
+"""The fitted model of an identification report as standalone code
+(``breakaway export``): a Python module, a C99 file or JSON.
 
 Modules: :mod:`.model` (reading and checking the report), :mod:`.reference` (the
 exported discretisation evaluated with the package's functions, what the files must

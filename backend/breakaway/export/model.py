@@ -1,4 +1,4 @@
-"""The fitted model of a §8 identification report, read and checked for export.
+"""The fitted model of an identification report, read and checked for export.
 
 What leaves the tool is the friction that acts on the body: the steady curve (E2)
 with the accepted effects that change it (``viscous``, ``viscous-power``,
@@ -111,7 +111,7 @@ def _units(report: dict) -> dict[str, str]:
 
 
 def model_from_report(report, s: float | None = None, t_0: float | None = None) -> ExportModel:
-    """Read the fitted model of a §8 report (``final.params`` and ``effects``).
+    """Read the fitted model of a report (``final.params`` and ``effects``).
 
     Parameters
     ----------
@@ -141,7 +141,7 @@ def model_from_report(report, s: float | None = None, t_0: float | None = None) 
                           ("effects",))
     if "viscous" in effects and "viscous-power" in effects:
         raise ReportError("report accepts both viscous and viscous-power, which exclude "
-                          "each other (MODEL.md §7)", ("effects",))
+                          "each other (viscous is viscous-power with n = 1)", ("effects",))
     values = {}
     for key in ("Fc", "Fs", "V", "delta"):
         if key not in params:

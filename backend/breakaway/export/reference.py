@@ -2,11 +2,11 @@
 Python and C files must reproduce.
 
 The exported ``step(x, t)`` is streaming: it sees each sample once, so it cannot take
-MODEL.md §3's central difference ``numpy.gradient(x, t)``, which needs the next sample.
+the reference discretisation's central difference ``numpy.gradient(x, t)``, which needs the next sample.
 It takes the backward difference ``v_i = (x_i − x_{i−1})/(t_i − t_{i−1})`` (``v_0 = 0``);
-everything else is §3's reference discretisation: ``d_i`` is the sign of the increment
+everything else is the reference discretisation's: ``d_i`` is the sign of the increment
 (kept where it is zero; the first non-zero increment sets ``d`` without a reversal,
-as §3's ``d_0``), a reversal at sample i sets ``x_r = x_{i−1}``, ``F_r = F_{i−1}``, and
+as the reference's ``d_0``), a reversal at sample i sets ``x_r = x_{i−1}``, ``F_r = F_{i−1}``, and
 the run starts virgin (``x_r = x_0``, ``F_r = 0``). Here the same discretisation runs
 on whole arrays through :func:`breakaway.presliding.presliding_force_from_target`.
 """

@@ -42,8 +42,8 @@ def header_lines(model: ExportModel, ascii: bool = False) -> list[str]:
     rotary = (" (rotary: angles, angular velocities and torques)" if model.rotary else "")
     included = ", ".join(model.effects) or "none"
     lines = [
-        "Model (equation numbers of M. Ruderman's note on break-away forces; breakaway's",
-        "MODEL.md sections 2, 3 and 7):",
+        "Model (equation numbers of M. Ruderman's note on break-away forces; the effects",
+        "as Breakaway's identification names them):",
         "  g(v)   = Fc + (Fs - Fc)*exp(-(|v|/V)^delta), times (1 + alpha*(t - t_0))   (E2)",
         "  Fss(v) = sgn(v)*g(v) + sigma*sgn(v)*|v|^n                                   (E2)",
         "  f(z)   = z*(1 - ln z), z = min(s*|x - x_r|, 1)                              (E4)",
@@ -57,7 +57,7 @@ def header_lines(model: ExportModel, ascii: bool = False) -> list[str]:
     lines += [
         "step(x, t) sees each sample once: v is the backward difference",
         "(x - x_prev)/(t - t_prev), 0 at the first sample (the fit used the central",
-        "difference of MODEL.md section 3); d is the sign of the increment, kept where it",
+        "difference numpy.gradient(x, t)); d is the sign of the increment, kept where it",
         "is zero, and the first motion sets it without a reversal; a reversal starts a",
         "new branch from the previous sample's x and F. The state starts virgin",
         "(x_r = the first x, F_r = 0).",

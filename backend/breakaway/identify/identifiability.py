@@ -20,7 +20,7 @@ reported as not determined, with no standard error.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -46,16 +46,26 @@ class Assessment:
     ``stderr[name]`` is a float, or None where the data give none (flat, at a bound,
     artefact, held fixed); ``why[name]`` is None for a determined parameter, else a short
     reason: ``"at-bound"``, ``"flat"``, ``"relative"``, ``"correlated:<other>"``,
-    ``"artefact"`` or ``"fixed"``.
+    ``"artefact"`` or ``"fixed"``. ``correlated[name]`` says, for a parameter not
+    determined only through its correlation with another, what the data do determine:
+    ``{"with": other, "r": correlation, "slope": c, "stderr": e}``, the combination
+    ``name − c·other`` known to ``± e`` (``c = r·σ/σ_other``, ``e = σ·√(1 − r²)``: the
+    parameter's error with the other held at its value).
     """
 
     stderr: dict
     determined: dict
     why: dict
     bound: dict  # name -> "lower" / "upper" for parameters on a bound
+    correlated: dict = field(default_factory=dict)
+    #: the fitted parameters' correlation matrix, rows and columns in ``names`` order
+    #: (NaN where a parameter has no variance); what a plan of the next experiment
+    #: adds its information to
+    names: tuple = ()
+    correlation: np.ndarray | None = None
     #: standard errors in the fit's coordinates where they differ from the parameter's
     #: own: the gap Fs − Fc of a Stribeck level carried above its Coulomb level
-    gap_stderr: dict = None
+    gap_stderr: dict = field(default_factory=dict)
 
 
 #: The residual's correlation time is summed until its autocorrelation falls below this.
@@ -124,7 +134,7 @@ def assess(problem, theta, jac, cost, n, active_mask=None, residual=None,
     names = problem.names
     p = len(names)
     params = problem.to_params(theta)
-    stderr, determined, why, bound = {}, {}, {}, {}
+    stderr, determined, why, bound, correlated = {}, {}, {}, {}, {}
     for name in problem.all_names:
         if name not in names:
             stderr[name], determined[name], why[name] = None, False, "fixed"
@@ -205,11 +215,16 @@ def assess(problem, theta, jac, cost, n, active_mask=None, residual=None,
             others = [j for j in range(p) if j != i and not flat[j]
                       and np.isfinite(corr[i, j]) and abs(corr[i, j]) > MAX_CORRELATION]
             if others:
-                reason = f"correlated:{names[others[0]]}"
+                j = others[0]
+                reason = f"correlated:{names[j]}"
+                r = float(corr[i, j])
+                correlated[name] = {"with": names[j], "r": r, "slope": float(cov_p[i, j] / var[j]),
+                                    "stderr": se * math.sqrt(max(0.0, 1.0 - r * r))}
         stderr[name] = se
         determined[name] = reason is None
         why[name] = reason
-    return Assessment(stderr, determined, why, bound, gap_stderr)
+    return Assessment(stderr, determined, why, bound, correlated, tuple(names), corr,
+                      gap_stderr)
 
 
 __all__ = ["Assessment", "MAX_CORRELATION", "MAX_RELATIVE_ERROR", "assess", "block_covariance",

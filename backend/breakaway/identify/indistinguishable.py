@@ -65,7 +65,7 @@ def viscous_or_detection(passing, trials, has_s: bool):
         sigma = viscous_equivalent_of_detection(d.params["tau_det"], problem.s, F_hat)
         text = (f"viscous and detection predict these break-away data alike; named "
                 f"detection because the file gives no '# s:' (σ would scale with an "
-                f"arbitrary s). The other reading is σ = {sigma:.4g} N·s/m at s = "
+                f"arbitrary s). The other reading is σ = {sigma:.4g} {problem.data.unit('N·s/m')} at s = "
                 f"{problem.s:g}")
     return named, other, warning("indistinguishable", other, text)
 

@@ -6,6 +6,7 @@ import math
 
 from .diagnosis import Diagnosis
 from .effects import param_spec
+from .extent import record_extent
 from .fitting import FitResult
 
 
@@ -31,6 +32,33 @@ def model_entry(fit: FitResult) -> dict:
             "rmse": _clean(fit.rmse), "bic": _clean(fit.bic)}
 
 
+def covariance_entry(fit: FitResult) -> dict:
+    """The covariance of the parameters that have a standard error: ``names`` and
+    ``matrix`` (rows and columns in that order, in the parameters' units). Its diagonal
+    is the reported standard errors squared; the correlations are the fit's."""
+    a = fit.assessment
+    names = [name for name in a.names if _clean(fit.stderr.get(name)) is not None]
+    index = [a.names.index(name) for name in names]
+    se = [float(fit.stderr[name]) for name in names]
+    matrix = []
+    for i, row in zip(index, se):
+        line = []
+        for j, column in zip(index, se):
+            rho = 1.0 if i == j else float(a.correlation[i, j])
+            line.append(row * column * (rho if math.isfinite(rho) else 0.0))
+        matrix.append(line)
+    return {"names": names, "matrix": matrix}
+
+
+def correlated(fit: FitResult) -> dict:
+    """The parameters of ``fit`` not determined only through a correlation, each with
+    what the data do determine (:class:`~.identifiability.Assessment` ``correlated``)."""
+    a = fit.assessment
+    return {name: {"with": c["with"], "r": _clean(c["r"]), "slope": _clean(c["slope"]),
+                   "stderr": _clean(c["stderr"])}
+            for name, c in a.correlated.items() if (a.why.get(name) or "").startswith("correlated:")}
+
+
 def parameter_units(data, names, effects=()) -> dict[str, str]:
     """Units of the parameter keys ``names`` of a model with ``effects``."""
     return {name: data.unit(param_spec(name, effects).unit) for name in names}
@@ -40,11 +68,16 @@ def report(diagnosis: Diagnosis) -> dict:
     """The identification report as a JSON-ready dict.
 
     Besides the §8 keys: each step's held-out error ``heldout``; ``units`` (of the
-    columns and of every parameter, linear or rotary); ``noise_method`` (how the floor
+    columns and of every parameter, linear or rotary); ``correlated`` (of the base and
+    the final model: the parameters not determined only through a correlation, and the
+    combination the data determine, :func:`correlated`); ``noise_method`` (how the floor
     was estimated); ``screened_rows`` (rows of the blocks the candidates were screened
     on, 0 when every row was used) and ``seconds`` (wall time); what an export of the
     model needs beyond ``final.params``: ``t_0`` (timeseries: the first sample's time,
-    where ``drift`` refers to) and ``s`` (breakaway: the presliding scale E13 used).
+    where ``drift`` refers to) and ``s`` (breakaway: the presliding scale E13 used);
+    ``final.covariance`` (:func:`covariance_entry`) and ``extent`` (what the record
+    spans, :func:`~.extent.record_extent`), which a plan of the next experiment starts
+    from.
     """
     d = diagnosis
     return {
@@ -56,7 +89,7 @@ def report(diagnosis: Diagnosis) -> dict:
         "steps": [{"effect": s.effect, **model_entry(s.fit), "evidence": s.evidence,
                    "heldout": _clean(s.heldout)} for s in d.steps],
         "effects": d.effects,
-        "final": model_entry(d.final),
+        "final": {**model_entry(d.final), "covariance": covariance_entry(d.final)},
         "error_before": _clean(d.base.rmse),
         "error_after": _clean(d.final.rmse),
         "heldout": {"before": _clean(d.heldout_before), "after": _clean(d.heldout_after)},
@@ -69,11 +102,13 @@ def report(diagnosis: Diagnosis) -> dict:
                            "heldout": _clean(c.heldout), "accepted": bool(c.accepted),
                            "reason": c.reason}
                        for e, c in d.candidates.items()},
+        "correlated": {"base": correlated(d.base), "final": correlated(d.final)},
         "units": {**units(d.data),
                   **parameter_units(d.data, list(d.base.params) + list(d.final.params),
                                    d.final.effects)},
         **({"derivatives": d.base.problem.derivatives.entry()}
            if d.data.kind == "timeseries" else {}),
+        "extent": record_extent(d.final),
         "screened_rows": d.screened_rows,
         "seconds": round(d.seconds, 3),
         **_context(d.data),
@@ -89,4 +124,4 @@ def _context(data) -> dict:
     return {}
 
 
-__all__ = ["model_entry", "report", "units"]
+__all__ = ["covariance_entry", "model_entry", "report", "units"]

@@ -1,4 +1,4 @@
-"""POST /api/explore: everything one redraw of the explorer needs (MODEL.md §9)."""
+"""POST /api/explore: everything one redraw of the explorer needs."""
 
 from __future__ import annotations
 

@@ -1,5 +1,5 @@
-"""POST /api/export: the fitted model of a report as a download (MODEL.md §9
-``breakaway export``): a Python module, a C99 file or JSON."""
+"""POST /api/export: the fitted model of a report as a download (what
+``breakaway export`` writes): a Python module, a C99 file or JSON."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""POST /api/fit and the fit jobs: upload a CSV (MODEL.md §6), get the §8 report."""
+"""POST /api/fit and the fit jobs: upload a CSV, get the identification report."""
 
 from __future__ import annotations
 
@@ -68,9 +68,9 @@ def _create(request: Request, file: UploadFile) -> str:
 
 @router.post("/fit", response_model=FitReport, responses=_BUSY)
 async def fit(request: Request,
-              file: UploadFile = File(..., description="CSV file, MODEL.md §6"),
+              file: UploadFile = File(..., description="CSV file: timeseries t,x,F; steady v,F; breakaway k,F_ba"),
               kind: str | None = Form(None, description=_KIND_HELP)) -> FitReport | Response:
-    """Fit the base model, trace the residual to missing effects, and report (§8).
+    """Fit the base model, trace the residual to missing effects, and report.
 
     For small files and scripts: the fit runs in a fit worker process under the same
     limits as a job, and is stopped when the client goes away.

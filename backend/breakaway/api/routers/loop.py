@@ -1,5 +1,5 @@
-"""POST /api/loop: the position loop of MODEL.md §5b, as time series with its stick
-phases beside (E13) and hunting (§9)."""
+"""POST /api/loop: the position loop, as time series with its stick phases beside
+(E13) and hunting."""
 
 from __future__ import annotations
 

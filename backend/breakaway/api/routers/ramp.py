@@ -1,4 +1,4 @@
-"""POST /api/ramp: the ramp experiment at one rate, as time series (MODEL.md §5, §9)."""
+"""POST /api/ramp: the ramp experiment at one rate, as time series."""
 
 from __future__ import annotations
 

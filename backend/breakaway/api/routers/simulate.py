@@ -1,4 +1,4 @@
-"""POST /api/simulate: break-away of the simulated ramp experiment (MODEL.md §5, §9)."""
+"""POST /api/simulate: break-away of the simulated ramp experiment."""
 
 from __future__ import annotations
 

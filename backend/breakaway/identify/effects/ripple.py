@@ -39,8 +39,9 @@ class Ripple(Effect):
         lam = params["wavelength"]
         cycle = pb.stick_slip
         if cycle is not None and cycle.matches(lam):
-            return (f"stick-slip: its wavelength {lam:.3g} is the distance the body slips "
-                    f"per stick-slip cycle ({cycle.travel:.3g}): the force oscillates with "
+            length = pb.data.unit("m")
+            return (f"stick-slip: its wavelength {lam:.3g} {length} is the distance the body "
+                    f"slips per stick-slip cycle ({cycle.travel:.3g} {length}): the force oscillates with "
                     f"the cycle, not with the position")
         ripple = params["A"] * np.sin(2 * np.pi * pb.x / lam + params["phase"])
         own = pb.measured - pb.predict(params) + ripple  # what the ripple took
@@ -53,7 +54,7 @@ class Ripple(Effect):
         gap = abs(math.remainder(phase_a - phase_b, 2 * math.pi))
         if abs(lam_a / lam_b - 1) > HALF_WAVELENGTH_TOLERANCE or gap > HALF_PHASE_TOLERANCE:
             return (f"it does not hold across the travel: the two halves of x give "
-                    f"wavelengths {lam_a:.3g} and {lam_b:.3g}, phases {phase_a:+.2f} and "
+                    f"wavelengths {lam_a:.3g} and {lam_b:.3g} {pb.data.unit('m')}, phases {phase_a:+.2f} and "
                     f"{phase_b:+.2f} rad")
         return None
 
@@ -61,8 +62,9 @@ class Ripple(Effect):
         lam = long_wavelength(pb, residual)
         if lam is None:
             return None
+        length = pb.data.unit("m")
         return (f"short-travel: the residual's dependence on x is strongest at a wavelength "
-                f"of about {lam:.3g}, but the travel ({pb.scales.travel:.3g}) holds fewer "
+                f"of about {lam:.3g} {length}, but the travel ({pb.scales.travel:.3g} {length}) holds fewer "
                 f"than {MIN_RIPPLE_PERIODS:g} such periods")
 
     def starts(self, pb, current, r):
@@ -92,7 +94,7 @@ class Ripple(Effect):
             return "the residual is periodic in x"
         phase = 2 * np.pi * pb.x / lam
         c = math.hypot(correlation(r, np.sin(phase)), correlation(r, np.cos(phase)))
-        return (f"the residual is periodic in x with wavelength {_fmt(lam)} m "
+        return (f"the residual is periodic in x with wavelength {_fmt(lam)} {pb.data.unit('m')} "
                 f"(correlation {c:.2f} with a sinusoid of x)")
 
 

@@ -143,14 +143,14 @@ def beyond_data(fit: FitResult, noise: float, known=None) -> dict[str, str]:
                 f"bound on {level}"))
         if ends < slowest:
             add((level, "V", "delta"), (
-                f"the Stribeck drop of V = {p['V']:.3g} and δ = {p['delta']:.3g} is over by "
+                f"the Stribeck drop of V = {p['V']:.3g} {speed_unit} and δ = {p['delta']:.3g} is over by "
                 f"{ends:.3g} {speed_unit}, below the slowest speed at which the data show "
                 f"the curve ({slowest:.3g} {speed_unit}): the data show only the level "
                 f"{low}; the friction there, {at_slowest:.4g} {unit}, is a lower bound on "
                 f"{level}"))
         elif begins > fastest:
             add((low, "V", "delta"), (
-                f"the Stribeck drop of V = {p['V']:.3g} and δ = {p['delta']:.3g} begins at "
+                f"the Stribeck drop of V = {p['V']:.3g} {speed_unit} and δ = {p['delta']:.3g} begins at "
                 f"{begins:.3g} {speed_unit}, above the fastest speed at which the data show "
                 f"the curve ({fastest:.3g} {speed_unit}): the data show only the peak "
                 f"{level}, which is an upper bound on {low}"))

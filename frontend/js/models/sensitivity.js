@@ -1,0 +1,61 @@
+// Where break-away forces carry information about V and δ: the band of rates over which
+// F_ba(k) changes most with them (the note's Fig. 5: the curves for the different F̂
+// part only during the exponential decrease). F_ba(k) is the steady curve at the
+// break-away speed ẋ* = k/(s·F̂·|ln z*|); it depends on V and δ only while ẋ* lies in
+// the Stribeck drop. The band is where √((∂F_ba/∂ln V)² + (∂F_ba/∂ln δ)²) is at least
+// half its largest value: the same rule as the planner's (plan/sensitivity.py), which
+// tests/browser/test_browser_planner.py holds it to.
+
+import { breakawayForce, breakawayVelocity } from "./model.js";
+
+/** The sensitivity at the band's edges, as a share of its largest value. */
+export const BAND_LEVEL = 0.5;
+const DECADES = 6;
+const POINTS = 1201;
+const STEP = 1e-5; // relative step of the central differences in ln V and ln δ
+
+/**
+ * The band of rates for the parameters `p` ({Fc, Fs, V, delta, sigma, s, z_ba}) with
+ * F̂ = `fHat`: {k: [low, high], speed: [low, high], peak} (N/s, m/s), or null without a
+ * drop (Fs = Fc).
+ */
+export function rateBand(p, fHat = p.F_hat) {
+  if (!(p.Fs > p.Fc)) return null;
+  const level = fHat === "Fc" ? p.Fc : fHat === "Fs" ? p.Fs : 0.5 * (p.Fc + p.Fs);
+  const centre = p.V * p.s * level * -Math.log(p.z_ba);
+  const rates = new Array(POINTS);
+  const strength = new Array(POINTS);
+  const up = (name) => ({ ...p, [name]: p[name] * Math.exp(STEP) });
+  const down = (name) => ({ ...p, [name]: p[name] * Math.exp(-STEP) });
+  const moved = [up("V"), down("V"), up("delta"), down("delta")];
+  let peak = 0;
+  for (let i = 0; i < POINTS; i += 1) {
+    const k = centre * 10 ** (-DECADES + (2 * DECADES * i) / (POINTS - 1));
+    const [vUp, vDown, dUp, dDown] = moved.map((q) => breakawayForce(k, q, fHat));
+    rates[i] = k;
+    strength[i] = Math.hypot((vUp - vDown) / (2 * STEP), (dUp - dDown) / (2 * STEP));
+    if (strength[i] > strength[peak]) peak = i;
+  }
+  if (!(strength[peak] > 0)) return null;
+  const bar = BAND_LEVEL * strength[peak];
+  let low = peak;
+  while (low > 0 && strength[low - 1] >= bar) low -= 1;
+  let high = peak;
+  while (high < POINTS - 1 && strength[high + 1] >= bar) high += 1;
+  const speed = (k) => breakawayVelocity(k, p, fHat);
+  return { k: [rates[low], rates[high]], speed: [speed(rates[low]), speed(rates[high])], peak: rates[peak] };
+}
+
+/** The sentence under the break-away plot that says what the band is and why. */
+export function bandSentence(band, p, fHat = p.F_hat) {
+  if (!band) {
+    return "Fs = Fc: there is no Stribeck drop, so F_ba(k) does not depend on V or δ "
+      + "at any rate; every ramp measures the same level.";
+  }
+  const g = (x) => String(Number(x.toPrecision(3)));
+  return `Shaded: the rates k = ${g(band.k[0])} to ${g(band.k[1])} N/s where F_ba(k) `
+    + `changes most with V and δ (F̂ = ${fHat}). There the break-away speed `
+    + `ẋ* = k/(s·F̂·|ln z*|), ${g(band.speed[0])} to ${g(band.speed[1])} m/s, falls inside `
+    + `the Stribeck drop around V = ${g(p.V)} m/s; slower ramps break away at about Fs, `
+    + "faster ones at about Fc, and measure those levels and nothing of V or δ.";
+}

@@ -1,0 +1,448 @@
+// A figure drawn on a canvas inside a Plotly graph, for the frames of a moving hand:
+// Plotly needs 13–24 ms to redraw one of these plots (benchmarks/ui_latency.py), this
+// 0.2–2 ms. The canvas lies between Plotly's two SVG layers, in the graph's own plot area
+// (Plotly's last layout: size and margins, which a legend may have widened): under it
+// the paper, over it the legend and the axis titles, whose names are brought up to date.
+// Backgrounds, grid, zero lines, traces and tick labels are drawn as Plotly draws them,
+// with Plotly's own ranges and ticks (axes.js), while Plotly's layers for them are hidden.
+// A person's zoom is kept, and traces hidden from the legend stay hidden.
+
+import { autorange, ticks } from "./axes.js";
+import { AXIS_KEY } from "./draw.js";
+
+/** The axis attributes a live drawing reads (the figure's over Plotly's full axis, which
+ *  holds hundreds: copying it whole cost a frame a millisecond under a phone's CPU). */
+const AXIS_STYLE = ["exponentformat", "gridcolor", "gridwidth", "overlaying", "showgrid", "side",
+  "tickfont", "tickmode", "zeroline", "zerolinecolor", "zerolinewidth"];
+
+function axisStyle(full, own) {
+  const style = {};
+  for (const name of AXIS_STYLE) style[name] = own[name] ?? full[name];
+  return style;
+}
+
+const legendNames = new WeakMap(); // graph -> the names a live frame last gave its legend
+
+/** Plotly's layers that the canvas stands in for, in the graph's first SVG. */
+const COVERED = [".bglayer", ".layer-below", ".cartesianlayer"];
+const DASHES = { dash: 3, dot: 1, longdash: 5 };
+
+/** Graph -> its Plotly container, first SVG, live canvas and that canvas's context,
+ *  found once (each frame asked the DOM five times a plot), found again when Plotly has
+ *  replaced them. */
+const found = new WeakMap();
+
+function layers(gd) {
+  const known = found.get(gd);
+  if (known?.main.isConnected && known.main.parentNode === known.container && gd.contains(known.container)) {
+    return known;
+  }
+  const container = gd.querySelector(".svg-container");
+  const main = container?.querySelector("svg.main-svg");
+  const entry = { container, main, canvas: container?.querySelector("canvas.live-layer") ?? null, ctx: null };
+  if (main) found.set(gd, entry);
+  return entry;
+}
+
+function canvasOf(gd) {
+  const entry = layers(gd);
+  if (!entry.canvas || entry.canvas.parentNode !== entry.container) {
+    entry.canvas = document.createElement("canvas");
+    entry.canvas.className = "live-layer";
+    entry.canvas.setAttribute("aria-hidden", "true");
+    entry.main.after(entry.canvas);
+    entry.ctx = null;
+  }
+  entry.ctx ??= entry.canvas.getContext("2d");
+  return entry;
+}
+
+function cover(gd, hidden) {
+  const { main } = layers(gd);
+  for (const selector of COVERED) {
+    const layer = main?.querySelector(`:scope > ${selector}`);
+    if (layer) layer.style.visibility = hidden ? "hidden" : "";
+  }
+}
+
+/** True while graph `gd` shows the canvas instead of Plotly's drawing. */
+export function isLive(gd) {
+  return gd.dataset.live === "true";
+}
+
+/** Plotly's drawing shown again (once Plotly has drawn the figure the canvas showed). */
+export function clearLive(gd) {
+  if (!isLive(gd)) return;
+  gd.dataset.live = "false";
+  legendNames.delete(gd); // Plotly's legend holds its own names again
+  const { canvas } = layers(gd);
+  if (canvas) canvas.style.display = "none";
+  cover(gd, false);
+}
+
+/** The axes of a figure drawn on graph `gd`: range, ticks and pixel map per axis key. */
+function axesOf(gd, figure, traces) {
+  const full = gd._fullLayout;
+  const size = full._size;
+  const out = {};
+  for (const key of Object.keys(figure.layout)) {
+    if (!AXIS_KEY.test(key) || !full[key]) continue;
+    const letter = key[0];
+    const id = letter + key.slice(5); // "x", "y", "y2"
+    const log = (figure.layout[key].type ?? full[key].type) === "log";
+    const length = letter === "x" ? size.w : size.h;
+    // a range the person chose (zoom, pan) is kept; otherwise Plotly's autorange
+    const range = full[key].autorange === false
+      ? full[key].range.slice()
+      : autorange(traces, letter, {
+        length, log, onAxis: (trace) => (trace[`${letter}axis`] ?? letter) === id,
+      });
+    const [r0, r1] = range;
+    const toPixel = letter === "x"
+      ? (l) => size.l + ((l - r0) / (r1 - r0)) * size.w
+      : (l) => size.t + size.h - ((l - r0) / (r1 - r0)) * size.h;
+    out[id] = {
+      key, letter, log, range, toPixel,
+      // on a log axis a line runs to a non-positive value far below the range (Plotly's
+      // LOG_CLIP); a marker there is not drawn
+      map: log ? (v, line = false) => {
+        if (v > 0) return toPixel(Math.log10(v));
+        return line ? toPixel(0.5 * (r0 + r1 - 20 * Math.abs(r0 - r1))) : NaN;
+      } : toPixel,
+      length,
+      style: axisStyle(full[key], figure.layout[key]),
+    };
+  }
+  // an axis laid over another takes its ticks where the other's are (tickmode "sync")
+  for (const axis of Object.values(out)) {
+    const under = axis.style.overlaying && out[axis.style.overlaying];
+    axis.ticks = ticks(axis.range, {
+      letter: axis.letter, length: axis.length, log: axis.log,
+      exponentformat: axis.style.exponentformat,
+      sync: under && (axis.style.tickmode ?? "sync") === "sync"
+        ? { range: under.range, ticks: ticks(under.range, { letter: under.letter, length: under.length, log: under.log, exponentformat: under.style.exponentformat }) }
+        : null,
+    });
+  }
+  return out;
+}
+
+/** The canvas's font, set only when it changes: each assignment parses the font anew
+ *  and brings the page's styles up to date. */
+function setFont(ctx, size, family) {
+  const font = `${size}px ${family}`;
+  if (ctx.lastFont !== font) {
+    ctx.font = font;
+    ctx.lastFont = font;
+  }
+}
+
+/** Widths of texts [px] by font and text: the tick labels of one frame are mostly those
+ *  of the one before. */
+const widths = new Map();
+const WIDTHS_KEPT = 2000;
+
+function textWidth(ctx, text, size, family) {
+  const key = `${size}px ${family}\u0000${text}`;
+  let width = widths.get(key);
+  if (width === undefined) {
+    setFont(ctx, size, family);
+    width = ctx.measureText(text).width;
+    if (widths.size >= WIDTHS_KEPT) widths.clear();
+    widths.set(key, width);
+  }
+  return width;
+}
+
+/** Tick labels [{text, x, y, align, size, family, color}], Plotly's <sup> powers raised
+ *  at 70 %: the bases first, then the powers, so that the font changes once or twice a
+ *  plot rather than twice a label. */
+function drawTickLabels(ctx, labels) {
+  const parts = [];
+  for (const label of labels) {
+    const match = /^(.*?)<sup>(.*)<\/sup>$/.exec(label.text);
+    const base = match ? match[1] : label.text;
+    const sup = match ? match[2] : "";
+    const supSize = label.size * 0.7;
+    const baseWidth = textWidth(ctx, base, label.size, label.family);
+    const width = baseWidth + (sup ? textWidth(ctx, sup, supSize, label.family) : 0);
+    const left = label.align === "end" ? label.x - width : label.align === "middle" ? label.x - width / 2 : label.x;
+    parts.push({ text: base, x: left, y: label.y, size: label.size, family: label.family, color: label.color });
+    if (sup) {
+      parts.push({ text: sup, x: left + baseWidth, y: label.y - 0.6 * supSize, size: supSize,
+        family: label.family, color: label.color });
+    }
+  }
+  parts.sort((a, b) => a.size - b.size);
+  ctx.textAlign = "left";
+  let color = null;
+  for (const part of parts) {
+    setFont(ctx, part.size, part.family);
+    if (part.color !== color) {
+      color = part.color;
+      ctx.fillStyle = color;
+    }
+    ctx.fillText(part.text, part.x, part.y);
+  }
+}
+
+function drawGrid(ctx, axes, size) {
+  for (const axis of Object.values(axes)) {
+    const { style, letter } = axis;
+    const zero = !axis.log && style.zeroline !== false && axis.range[0] * axis.range[1] <= 0;
+    ctx.setLineDash([]);
+    if (style.showgrid !== false) {
+      ctx.strokeStyle = style.gridcolor ?? "#eee";
+      ctx.lineWidth = style.gridwidth ?? 1;
+      ctx.beginPath();
+      for (const tick of axis.ticks) {
+        if (zero && tick.value === 0) continue;
+        const p = Math.round(axis.toPixel(tick.value)) + 0.5;
+        if (letter === "x") { ctx.moveTo(p, size.t); ctx.lineTo(p, size.t + size.h); } else { ctx.moveTo(size.l, p); ctx.lineTo(size.l + size.w, p); }
+      }
+      ctx.stroke();
+    }
+    if (zero) {
+      const p = Math.round(axis.toPixel(0)) + 0.5;
+      ctx.strokeStyle = style.zerolinecolor ?? "#444";
+      ctx.lineWidth = style.zerolinewidth ?? 1;
+      ctx.beginPath();
+      if (letter === "x") { ctx.moveTo(p, size.t); ctx.lineTo(p, size.t + size.h); } else { ctx.moveTo(size.l, p); ctx.lineTo(size.l + size.w, p); }
+      ctx.stroke();
+    }
+  }
+}
+
+function drawLabels(ctx, axes, size, font) {
+  const labels = [];
+  for (const axis of Object.values(axes)) {
+    const tickfont = axis.style.tickfont ?? {};
+    const fontSize = tickfont.size ?? font.size ?? 12;
+    const family = tickfont.family ?? font.family;
+    const color = tickfont.color ?? font.color ?? "#444";
+    const [lo, hi] = axis.range;
+    for (const tick of axis.ticks) {
+      if (tick.value < Math.min(lo, hi) - 1e-9 * Math.abs(hi - lo)
+          || tick.value > Math.max(lo, hi) + 1e-9 * Math.abs(hi - lo)) continue;
+      const labelSize = fontSize * tick.scale;
+      const p = axis.toPixel(tick.value);
+      const label = { text: tick.text, size: labelSize, family, color };
+      if (axis.letter === "x") {
+        labels.push({ ...label, x: p, y: size.t + size.h + 0.5 + labelSize, align: "middle" });
+      } else if (axis.style.side === "right") {
+        labels.push({ ...label, x: size.l + size.w + 1, y: p + 0.35 * labelSize, align: "start" });
+      } else {
+        labels.push({ ...label, x: size.l - 1, y: p + 0.35 * labelSize, align: "end" });
+      }
+    }
+  }
+  drawTickLabels(ctx, labels);
+}
+
+/** Plotly's marker shapes (plotly.js symbol_defs) at radius r around (x, y). */
+function markerPath(ctx, symbol, x, y, r) {
+  const name = String(symbol ?? "circle").replace(/-open$/, "");
+  if (name === "triangle-right" || name === "triangle-left") {
+    const rt = (r * 2) / Math.sqrt(3);
+    const sign = name === "triangle-right" ? 1 : -1;
+    ctx.moveTo(x - (sign * r) / 2, y - rt);
+    ctx.lineTo(x + sign * rt, y);
+    ctx.lineTo(x - (sign * r) / 2, y + rt);
+    ctx.closePath();
+  } else if (name === "diamond") {
+    const rd = r * 1.3;
+    ctx.moveTo(x + rd, y);
+    ctx.lineTo(x, y + rd);
+    ctx.lineTo(x - rd, y);
+    ctx.lineTo(x, y - rd);
+    ctx.closePath();
+  } else if (name === "x") {
+    const rx = (r * 0.8) / Math.sqrt(2) + r * 0.4;
+    ctx.moveTo(x - rx, y - rx);
+    ctx.lineTo(x + rx, y + rx);
+    ctx.moveTo(x + rx, y - rx);
+    ctx.lineTo(x - rx, y + rx);
+  } else {
+    ctx.moveTo(x + r, y);
+    ctx.arc(x, y, r, 0, 2 * Math.PI);
+  }
+}
+
+function drawTrace(ctx, trace, axes, font) {
+  const xAxis = axes[trace.xaxis ?? "x"];
+  const yAxis = axes[trace.yaxis ?? "y"];
+  if (!xAxis || !yAxis) return;
+  const mode = trace.mode ?? "lines";
+  const xs = trace.x ?? [];
+  const ys = trace.y ?? [];
+  ctx.globalAlpha = trace.opacity ?? 1;
+  if (trace.fill === "toself" && trace.fillcolor) {
+    // a shaded region (the break-away plot's band of rates), as Plotly fills it
+    ctx.beginPath();
+    for (let i = 0; i < xs.length; i += 1) {
+      const px = xAxis.map(xs[i], true);
+      const py = yAxis.map(ys[i], true);
+      if (i === 0) ctx.moveTo(px, py); else ctx.lineTo(px, py);
+    }
+    ctx.closePath();
+    ctx.fillStyle = trace.fillcolor;
+    ctx.fill();
+  }
+  if (mode.includes("lines") && (trace.line?.width ?? 2) > 0) {
+    const line = trace.line ?? {};
+    const width = line.width ?? 2;
+    const dash = DASHES[line.dash];
+    const unit = Math.max(width, 3);
+    ctx.setLineDash(dash ? [dash * unit, dash * unit] : []);
+    ctx.lineWidth = width;
+    ctx.strokeStyle = line.color ?? "#1f77b4";
+    ctx.beginPath();
+    // a point within half a pixel of the last one drawn adds nothing to see (Plotly
+    // simplifies its lines too); the last point of a run is always drawn
+    let pen = false;
+    let lastX = 0; // the last point drawn
+    let lastY = 0;
+    let skipped = false; // a point passed over since, the last at (skipX, skipY)
+    let skipX = 0;
+    let skipY = 0;
+    for (let i = 0; i < xs.length; i += 1) {
+      const px = xs[i] == null ? NaN : xAxis.map(xs[i], true);
+      const py = ys[i] == null ? NaN : yAxis.map(ys[i], true);
+      if (!Number.isFinite(px) || !Number.isFinite(py)) {
+        if (skipped) ctx.lineTo(skipX, skipY);
+        pen = false;
+        skipped = false;
+      } else if (!pen) {
+        ctx.moveTo(px, py);
+        pen = true;
+        lastX = px;
+        lastY = py;
+      } else if (Math.abs(px - lastX) < 0.5 && Math.abs(py - lastY) < 0.5) {
+        skipped = true;
+        skipX = px;
+        skipY = py;
+      } else {
+        ctx.lineTo(px, py);
+        lastX = px;
+        lastY = py;
+        skipped = false;
+      }
+    }
+    if (skipped) ctx.lineTo(skipX, skipY);
+    ctx.stroke();
+    ctx.setLineDash([]);
+  }
+  if (mode.includes("markers")) {
+    const marker = trace.marker ?? {};
+    const r = (marker.size ?? 6) / 2;
+    for (let i = 0; i < xs.length; i += 1) {
+      if (xs[i] == null || ys[i] == null) continue;
+      const px = xAxis.map(xs[i]);
+      const py = yAxis.map(ys[i]);
+      if (!Number.isFinite(px) || !Number.isFinite(py)) continue;
+      const symbol = Array.isArray(marker.symbol) ? marker.symbol[i] : marker.symbol;
+      const color = Array.isArray(marker.color) ? marker.color[i] : marker.color ?? "#1f77b4";
+      const open = String(symbol ?? "").endsWith("-open") || symbol === "x";
+      ctx.beginPath();
+      markerPath(ctx, symbol, px, py, r);
+      if (!open) {
+        ctx.fillStyle = color;
+        ctx.fill();
+      }
+      const lineWidth = marker.line?.width ?? (open ? Math.max(1, symbol === "x" ? r * 0.5 : 1) : 0);
+      if (lineWidth > 0) {
+        ctx.lineWidth = lineWidth;
+        ctx.strokeStyle = open ? color : marker.line?.color ?? color;
+        ctx.stroke();
+      }
+    }
+  }
+  if (mode.includes("text") && trace.text) {
+    ctx.fillStyle = font.color ?? "#444";
+    setFont(ctx, font.size ?? 12, font.family);
+    ctx.textAlign = "right";
+    for (let i = 0; i < xs.length; i += 1) {
+      const px = xAxis.map(xs[i]);
+      const py = yAxis.map(ys[i]);
+      if (Number.isFinite(px) && Number.isFinite(py)) ctx.fillText(trace.text[i] ?? "", px - 4, py - 6);
+    }
+  }
+  ctx.globalAlpha = 1;
+}
+
+/** The legend's entries renamed as the figure names its traces. */
+function renameLegend(gd, data) {
+  const names = data.map((trace) => trace.name);
+  const last = legendNames.get(gd);
+  if (last && last.length === names.length && last.every((name, i) => name === names[i])) return;
+  legendNames.set(gd, names);
+  for (const item of gd.querySelectorAll(".legend .traces")) {
+    const index = item.__data__?.[0]?.trace?.index;
+    const name = data[index]?.name;
+    const text = item.querySelector(".legendtext");
+    if (text && typeof name === "string" && text.textContent !== name) {
+      text.textContent = name;
+      text.setAttribute("data-unformatted", name);
+    }
+  }
+}
+
+/**
+ * Draw `figure` (styled as the page shows it) over graph `gd`'s plot area; false when
+ * Plotly has not laid the graph out yet (its first drawing is Plotly's).
+ */
+export function drawLive(gd, figure) {
+  const full = gd._fullLayout;
+  if (!full?._size || !layers(gd).main) return false;
+  const shown = gd.data ?? [];
+  const traces = figure.data.filter((trace, i) => (shown[i]?.visible ?? true) === true);
+  const axes = axesOf(gd, figure, traces);
+  if (!axes.x || !axes.y) return false;
+  const size = full._size;
+  const { canvas, ctx } = canvasOf(gd);
+  const ratio = window.devicePixelRatio || 1;
+  const width = full.width;
+  const height = full.height;
+  if (canvas.width !== Math.round(width * ratio) || canvas.height !== Math.round(height * ratio)) {
+    canvas.width = Math.round(width * ratio);
+    canvas.height = Math.round(height * ratio);
+    canvas.style.width = `${width}px`;
+    canvas.style.height = `${height}px`;
+    ctx.lastFont = null; // a resized canvas forgets its font
+  }
+  ctx.setTransform(ratio, 0, 0, ratio, 0, 0);
+  ctx.clearRect(0, 0, width, height);
+  const font = { ...full.font, ...(figure.layout.font ?? {}) };
+  ctx.fillStyle = figure.layout.plot_bgcolor ?? full.plot_bgcolor ?? "#fff";
+  ctx.fillRect(size.l, size.t, size.w, size.h);
+  drawGrid(ctx, axes, size);
+  const fontBefore = ctx.lastFont;
+  ctx.save();
+  ctx.beginPath();
+  ctx.rect(size.l, size.t, size.w, size.h);
+  ctx.clip();
+  for (const trace of traces) drawTrace(ctx, trace, axes, font);
+  ctx.restore();
+  ctx.lastFont = fontBefore; // restore() brought back the font before the clip
+  drawLabels(ctx, axes, size, font);
+  if (canvas.style.display) canvas.style.display = "";
+  // the ranges drawn, for tests: a zoom must hold in the live frames too
+  canvas.dataset.ranges = JSON.stringify(Object.fromEntries(
+    Object.entries(axes).map(([id, axis]) => [id, axis.range])));
+  if (!isLive(gd)) {
+    cover(gd, true);
+    gd.dataset.live = "true";
+  }
+  renameLegend(gd, figure.data);
+  return true;
+}
+
+/** The ranges and tick labels a live drawing of `figure` on `gd` uses (for tests). */
+export function liveAxes(gd, figure) {
+  const shown = gd.data ?? [];
+  const traces = figure.data.filter((trace, i) => (shown[i]?.visible ?? true) === true);
+  const axes = axesOf(gd, figure, traces);
+  return Object.fromEntries(Object.entries(axes).map(([id, axis]) => [id, {
+    range: axis.range, ticks: axis.ticks.map((tick) => [tick.value, tick.text]),
+  }]));
+}

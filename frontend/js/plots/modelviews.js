@@ -1,0 +1,58 @@
+// The four model plots as views of the registry (views.js), drawn from each
+// /api/explore frame by the builders of plots.js, their exports captioned with the
+// parameters each is drawn with; under the break-away plot, the sentence on its shaded
+// band of rates (models/sensitivity.js), once a state settles.
+
+import { bandSentence, rateBand } from "../models/sensitivity.js";
+import { captionOf } from "../page/controls.js";
+import { onFrameDrawn } from "../page/render.js";
+import { exploreBody } from "../page/state.js";
+import { $, app } from "../page/store.js";
+import { registerView } from "../page/views.js";
+import { simStale } from "../ramp/simulation.js";
+import {
+  breakawayFigure, hysteresisFigure, phaseFigure, stribeckFigure,
+} from "./plots.js";
+
+const STRIBECK = ["Fc", "Fs", "V", "delta", "sigma"];
+const QUASI_STATIC = [...STRIBECK, "s", "k", "z_ba"];
+
+const bands = { key: null, band: null };
+
+/** The band of the state's parameters, computed once per set of them. */
+function bandOf(state) {
+  const body = exploreBody(state);
+  const key = JSON.stringify(body);
+  if (bands.key !== key) {
+    bands.key = key;
+    bands.band = rateBand(body, body.F_hat);
+  }
+  return bands.band;
+}
+
+registerView({
+  id: "stribeck", source: "frame", caption: captionOf(STRIBECK),
+  figure: ({ frame, state }) => stribeckFigure(frame, state),
+});
+registerView({
+  id: "hysteresis", source: "frame", caption: captionOf([...STRIBECK, "s"]),
+  figure: ({ frame, state }) => hysteresisFigure(frame, state),
+});
+registerView({
+  id: "phase", source: "frame", caption: captionOf(QUASI_STATIC, { fHat: true }),
+  figure: ({ frame, state }) => phaseFigure(frame, state),
+});
+registerView({
+  id: "breakaway", source: "frame",
+  // the simulated points are the ramp's, with the mass m
+  caption: (state) => captionOf(state.sim ? [...QUASI_STATIC, "m"] : QUASI_STATIC, { fHat: true })(state),
+  // the simulated points are drawn faded while they are for another state
+  figure: ({ frame, state }) => breakawayFigure(frame, state,
+    app.sim && { ...app.sim, stale: simStale(state, frame) }, state.lugre ? app.lugre : null,
+    bandOf(state)),
+});
+
+onFrameDrawn(() => {
+  const body = exploreBody(app.state);
+  $("ba-band").textContent = bandSentence(bandOf(app.state), body, body.F_hat);
+});

@@ -1,0 +1,52 @@
+"""What a fit determines: a parameter that is not determined only because it moves with
+another says which combination of the two the data do determine, with the correlation,
+in the data's units."""
+
+from __future__ import annotations
+
+import math
+import re
+
+import pytest
+
+from breakaway.identify import identify, parse_csv
+
+from . import machines
+
+
+@pytest.fixture(scope="module")
+def joint_in_degrees():
+    # a joint logged in degrees whose presliding scale s moves with Fs in the final fit
+    return identify(parse_csv(machines.joint_in_degrees(2, command="ramp").csv.encode()))
+
+
+def test_a_correlated_parameter_names_the_combination_the_data_determine(joint_in_degrees):
+    report = joint_in_degrees
+    tied = report["correlated"]["final"]["s"]
+    params, stderr = report["final"]["params"], report["final"]["stderr"]
+    assert tied["with"] == "Fs" and abs(tied["r"]) > 0.99
+    assert report["final"]["determined"]["s"] is False
+    # s − c·Fs is known to σ_s·√(1 − r²): far tighter than s alone
+    assert tied["stderr"] == pytest.approx(stderr["s"] * math.sqrt(1 - tied["r"] ** 2), rel=1e-9)
+    assert tied["stderr"] < 0.2 * stderr["s"]
+    assert math.copysign(1, tied["slope"]) == math.copysign(1, tied["r"])
+    combined = params["s"] - tied["slope"] * params["Fs"]
+    [message] = [w["message"] for w in report["warnings"]
+                 if w["code"] == "undetermined" and w["parameter"] == "s"]
+    sign = "+" if tied["slope"] < 0 else "−"
+    assert f"moves with Fs (correlation r = {tied['r']:+.3f})" in message
+    assert f"the data determine s {sign} {abs(tied['slope']):.3g}·Fs = {combined:.4g} 1/deg" in message
+    assert message.startswith(f"s = {params['s']:.4g} 1/deg")
+
+
+def test_every_value_in_a_rotary_reports_words_carries_its_unit(joint_in_degrees):
+    report = joint_in_degrees
+    assert report["units"]["F"] == "N·m" and report["units"]["x"] == "deg"
+    texts = [w["message"] for w in report["warnings"]] + [s["evidence"] for s in report["steps"]]
+    # a parameter quoted with a number is followed by its unit in the data's units
+    for text in texts:
+        for name, unit in report["units"].items():
+            if unit in ("", "-", "s") or not re.search(rf"(?<![\w·]){re.escape(name)} = [-\d.e+]+", text):
+                continue
+            for quoted in re.finditer(rf"(?<![\w·]){re.escape(name)} = ([-\d.e+]+)( \S+)?", text):
+                assert quoted.group(2) and quoted.group(2).strip(" ,;:)") == unit, (name, text)
