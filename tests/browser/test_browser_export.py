@@ -64,25 +64,25 @@ def rows_of(file) -> list[list[str]]:
     return list(csv.reader(io.StringIO(open(file.path(), encoding="utf-8").read())))
 
 
-@pytest.mark.parametrize("plot", list(HEADERS))
-def test_csv_export_holds_the_plotted_points(explorer, plot):
+def test_every_plots_csv_export_holds_the_plotted_points(explorer):
     open_with_every_plot(explorer)
-    file = download(explorer, f"Export {NAMES[plot]} as CSV")
-    assert file.suggested_filename == f"breakaway-{plot}.csv"
-    rows = rows_of(file)
-    assert rows[0] == [f"# title: {TITLES[plot]}"]
-    assert rows[1][0].startswith("# parameters: ") and CAPTIONS[plot] in ",".join(rows[1])
-    assert rows[2] == HEADERS[plot]
-    traces = explorer.page.evaluate("""(id) => document.getElementById('plot-' + id).data.map(t => (
-        {name: t.name, x: Array.from(t.x), y: Array.from(t.y), right: t.yaxis === 'y2'}))""", plot)
-    expected = [[trace["name"], x, y, trace["right"]] for trace in traces
-                for x, y in zip(trace["x"], trace["y"]) if x is not None and y is not None]
-    assert len(rows) - 3 == len(expected)
-    for row, (name, x, y, right) in zip(rows[3:], expected):
-        assert row[0] == name and float(row[1]) == x
-        # a trace on the right axis (the ramp's ẋ) writes its values in that column
-        assert float(row[3] if right else row[2]) == y
-        assert len(row) == len(HEADERS[plot]) and (not right or row[2] == "")
+    for plot in HEADERS:
+        file = download(explorer, f"Export {NAMES[plot]} as CSV")
+        assert file.suggested_filename == f"breakaway-{plot}.csv"
+        rows = rows_of(file)
+        assert rows[0] == [f"# title: {TITLES[plot]}"]
+        assert rows[1][0].startswith("# parameters: ") and CAPTIONS[plot] in ",".join(rows[1]), plot
+        assert rows[2] == HEADERS[plot]
+        traces = explorer.page.evaluate("""(id) => document.getElementById('plot-' + id).data.map(t => (
+            {name: t.name, x: Array.from(t.x), y: Array.from(t.y), right: t.yaxis === 'y2'}))""", plot)
+        expected = [[trace["name"], x, y, trace["right"]] for trace in traces
+                    for x, y in zip(trace["x"], trace["y"]) if x is not None and y is not None]
+        assert len(rows) - 3 == len(expected), plot
+        for row, (name, x, y, right) in zip(rows[3:], expected):
+            assert row[0] == name and float(row[1]) == x
+            # a trace on the right axis (the ramp's ẋ) writes its values in that column
+            assert float(row[3] if right else row[2]) == y
+            assert len(row) == len(HEADERS[plot]) and (not right or row[2] == "")
 
 
 def test_stribeck_csv_is_the_model_curve(explorer):
@@ -122,27 +122,27 @@ INK = """async ([png, band]) => {
 }"""
 
 
-@pytest.mark.parametrize("plot", list(HEADERS))
-def test_png_export_is_titled_and_captioned(explorer, plot):
+def test_every_plots_png_export_is_titled_and_captioned(explorer):
     open_with_every_plot(explorer)
-    file = download(explorer, f"Export {NAMES[plot]} as PNG")
-    assert file.suggested_filename == f"breakaway-{plot}.png"
-    data = open(file.path(), "rb").read()
-    assert png_size(data) == PNG_SIZE
-    # the title and the caption lines above the plot: ink in the top band, where the
-    # page's own figures leave an 8-px margin
-    title, rest = explorer.page.evaluate(INK, [base64.b64encode(data).decode(), 120])
-    assert title > 1000 and rest > title
+    for plot in HEADERS:
+        file = download(explorer, f"Export {NAMES[plot]} as PNG")
+        assert file.suggested_filename == f"breakaway-{plot}.png"
+        data = open(file.path(), "rb").read()
+        assert png_size(data) == PNG_SIZE, plot
+        # the title and the caption lines above the plot: ink in the top band, where the
+        # page's own figures leave an 8-px margin
+        title, rest = explorer.page.evaluate(INK, [base64.b64encode(data).decode(), 120])
+        assert title > 1000 and rest > title, plot
 
 
-@pytest.mark.parametrize("plot", ["ramp", "loop-force"])
-def test_svg_export_holds_the_title_and_the_caption(explorer, plot):
+def test_svg_export_holds_the_title_and_the_caption(explorer):
     open_with_every_plot(explorer)
-    file = download(explorer, f"Export {NAMES[plot]} as SVG")
-    assert file.suggested_filename == f"breakaway-{plot}.svg"
-    text = open(file.path(), encoding="utf-8").read()
-    assert text.startswith("<svg") and 'width="1200"' in text
-    assert TITLES[plot] in text and CAPTIONS[plot] in text.replace("&amp;", "&")
+    for plot in ("ramp", "loop-force"):
+        file = download(explorer, f"Export {NAMES[plot]} as SVG")
+        assert file.suggested_filename == f"breakaway-{plot}.svg"
+        text = open(file.path(), encoding="utf-8").read()
+        assert text.startswith("<svg") and 'width="1200"' in text
+        assert TITLES[plot] in text and CAPTIONS[plot] in text.replace("&amp;", "&")
 
 
 def test_a_presentation_export_is_in_large_type(explorer):

@@ -7,12 +7,12 @@ import {
 } from "./controls.js";
 import { onSchemeChange, setPresentation } from "../plots/draw.js";
 import { addExportButtons, wireExports } from "../plots/export.js";
-import { redraw, refresh, settleNow } from "./render.js";
 import {
-  defaultState, fromQuery, movesFrame, presetState,
-} from "./state.js";
+  computeFramesAhead, redraw, refresh, settleNow,
+} from "./render.js";
+import { defaultState, fromQuery, presetState } from "./state.js";
 import {
-  $, app, commit, setToggle, shownState,
+  $, app, commit, onIdle, setToggle, shownState,
 } from "./store.js";
 import { drawView, prefetchViews, viewFigures } from "./viewrequests.js";
 import {
@@ -67,10 +67,16 @@ function keyTarget(key, range) {
 }
 
 /** Keys move `range` in the page (keyTarget), then `moved()` and a history entry; on
- *  focus and after each press the states `ahead()` gives (one press away) are asked for
- *  ahead, so the next press either way waits for nothing only a request can draw. */
+ *  focus and after each press, once the page is idle, the states `ahead()` gives (one
+ *  press away) have their views' answers asked for and their model's curves made, so
+ *  that the next press either way waits for neither. */
 export function wireSliderKeys(range, moved, ahead) {
-  range.addEventListener("focus", () => prefetchViews(ahead()));
+  const askAhead = () => onIdle(() => {
+    const states = ahead();
+    prefetchViews(states);
+    computeFramesAhead(states);
+  });
+  range.addEventListener("focus", askAhead);
   range.addEventListener("keydown", (event) => {
     if (event.altKey || event.ctrlKey || event.metaKey) return;
     const target = keyTarget(event.key, range);
@@ -81,15 +87,12 @@ export function wireSliderKeys(range, moved, ahead) {
       moved();
       commit();
     }
-    prefetchViews(ahead());
+    askAhead();
   });
 }
 
-/** The states one key press away on `spec`'s slider, on either side, when a view with a
- *  request of its own would draw them (none for a slider that moves the model's
- *  curves, unless a view is drawn live at every change: the loop on the screen). */
+/** The states one key press away on `spec`'s slider, on either side. */
 function neighbours(spec, range) {
-  if (movesFrame(spec.name) && !requestViews().some((view) => view.request.live?.(app.state))) return [];
   const out = [];
   for (const step of [-1, 1]) {
     const position = Number(range.value) + step;

@@ -92,7 +92,7 @@ export function matchingPreset(state, presets) {
 
 /** Whether parameter `name` moves the quasi-static frame: all but the mass m, which
  *  only the ramp experiment uses (moving m asks for no new frame). */
-export function movesFrame(name) {
+function movesFrame(name) {
   return name !== "m";
 }
 

@@ -20,7 +20,7 @@ export const app = {
   frame: null,
   frameKey: null, // the /api/explore body the frame answers
   liveOn: true, // live frames while a hand moves (off: every change drawn by Plotly)
-  liveCache: null, // {key, frame}: the curves computed in the page for the last live frame
+  liveFrames: new Map(), // /api/explore body (JSON) -> its curves computed in the page
   liveRequest: null, // the animation frame that draws the next live frame
   holdUntil: 0, // the settled drawing waits until then (the hand is moving) [ms]
   lastInputAt: -Infinity, // the last input of a moving hand [ms]
@@ -66,6 +66,13 @@ export function setAttr(element, name, value) {
 export function setHidden(element, hidden) {
   if (element.hidden !== hidden) element.hidden = hidden;
 }
+
+/** Call `fn` once the browser is idle (after the frame on its way is drawn), at the
+ *  latest after IDLE_WAIT_MS. */
+const IDLE_WAIT_MS = 100;
+export const onIdle = window.requestIdleCallback
+  ? (fn) => window.requestIdleCallback(fn, { timeout: IDLE_WAIT_MS })
+  : (fn) => setTimeout(fn, 1);
 
 /** The state the plots and views show: the current one while it is valid, else the last
  *  valid one. */

@@ -4,7 +4,7 @@
 
 import { breakawayVelocity, steadyForce } from "../models/model.js";
 import {
-  fmt, hover, label, quantity, unit,
+  fmt, hover, label, quantity,
 } from "../page/units.js";
 import { PALETTE } from "../plots/palette.js";
 
