@@ -17,10 +17,8 @@ from __future__ import annotations
 
 import asyncio
 import logging
-import multiprocessing
 import os
 import time
-from concurrent.futures import ProcessPoolExecutor
 from concurrent.futures.process import BrokenProcessPool
 from pathlib import Path
 from typing import Awaitable, Callable
@@ -28,7 +26,7 @@ from typing import Awaitable, Callable
 from ..identify import DataError, Dataset, FitError, diagnose, report
 from ..identify.panel import residuals_csv, series
 from .jobstore import JobStore
-from .simulation import _exit_with_parent
+from .processes import WorkerProcess
 
 log = logging.getLogger("breakaway.api")
 
@@ -79,36 +77,6 @@ def run_fit(db_path: str, job_id: str, data: Dataset) -> None:
 FIT_NICENESS = 10
 
 
-def _start_fit_worker(parent: int) -> None:
-    os.nice(FIT_NICENESS)
-    _exit_with_parent(parent)
-
-
-class _Slot:
-    """One worker process (started on first use, ended to stop a fit at once)."""
-
-    def __init__(self) -> None:
-        self._pool: ProcessPoolExecutor | None = None
-
-    def submit(self, *args):
-        if self._pool is None:
-            self._pool = ProcessPoolExecutor(
-                max_workers=1, mp_context=multiprocessing.get_context("spawn"),
-                initializer=_start_fit_worker, initargs=(os.getpid(),))
-        return self._pool.submit(*args)
-
-    def kill(self) -> None:
-        pool, self._pool = self._pool, None
-        if pool is None:
-            return
-        processes = list((getattr(pool, "_processes", None) or {}).values())
-        for process in processes:
-            process.kill()
-        pool.shutdown(wait=False, cancel_futures=True)
-        for process in processes:
-            process.join(timeout=5)
-
-
 class FitWorkers:
     """``workers`` fit processes and a waiting room of ``queue``, over one job store."""
 
@@ -117,8 +85,8 @@ class FitWorkers:
         self.store = store
         self.capacity = workers + queue
         self.timeout_s = timeout_s
-        self._slots = [_Slot() for _ in range(workers)]
-        self._free: asyncio.Queue[_Slot] | None = None
+        self._slots = [WorkerProcess(niceness=FIT_NICENESS) for _ in range(workers)]
+        self._free: asyncio.Queue[WorkerProcess] | None = None
         self._tasks: set[asyncio.Task] = set()
 
     def full(self) -> bool:
@@ -149,7 +117,7 @@ class FitWorkers:
         finally:
             self._free.put_nowait(slot)
 
-    async def _watch(self, slot: _Slot, job_id: str, data: Dataset, gone) -> None:
+    async def _watch(self, slot: WorkerProcess, job_id: str, data: Dataset, gone) -> None:
         store = self.store
         if store.cancel_requested(job_id) or (gone and await gone()):
             store.finish(job_id, "cancelled")
@@ -167,7 +135,7 @@ class FitWorkers:
                 try:
                     future.result()
                 except BrokenProcessPool:
-                    slot.kill()
+                    slot.end()
                     if stop_at is None:
                         log.warning("fit worker died during job %s", job_id)
                         store.finish(job_id, "error", error="the fit's worker process died "
@@ -180,11 +148,11 @@ class FitWorkers:
                 store.request_cancel(job_id)
                 stop_at = now + GRACE_S
             if stop_at is not None and now >= stop_at:
-                slot.kill()  # did not reach a checkpoint in time: end its process
+                slot.end()  # did not reach a checkpoint in time: end its process
                 store.finish(job_id, "cancelled")
                 return
             if now - started > self.timeout_s:
-                slot.kill()
+                slot.end()
                 store.finish(job_id, "error", error=f"the fit took longer than "
                                                     f"{self.timeout_s:g} s and was stopped")
                 return
@@ -193,4 +161,4 @@ class FitWorkers:
         for task in self._tasks:
             task.cancel()
         for slot in self._slots:
-            slot.kill()
+            slot.end()
