@@ -7,6 +7,7 @@ clean, and a shutdown ends every worker and leaks nothing."""
 
 from __future__ import annotations
 
+import asyncio
 import os
 import signal
 import socket
@@ -18,12 +19,16 @@ import time
 import urllib.request
 from pathlib import Path
 
+import numpy as np
 import orjson
 import pytest
 from fastapi.testclient import TestClient
 
 from breakaway.api.app import create_app
+from breakaway.api.fitworkers import FitWorkers
+from breakaway.api.jobstore import JobStore
 from breakaway.dynamics import simulate_breakaway
+from breakaway.identify import parse_csv
 from breakaway.identify.synthetic import make_dataset, to_csv
 from breakaway.params import DEFAULTS
 from breakaway.settings import get_settings
@@ -66,6 +71,27 @@ def children(pid: int) -> list[int]:
         out += kids
         frontier += kids
     return out
+
+
+def alive(pid: int) -> bool:
+    """Whether the process runs (a zombie nobody reaped does not)."""
+    try:
+        return Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0] != "Z"
+    except (FileNotFoundError, ProcessLookupError):
+        return False
+
+
+def spawned(parent: int) -> set[int]:
+    """The running worker processes ``parent`` spawned (not multiprocessing's resource
+    tracker)."""
+    found = set()
+    for pid in children(parent):
+        try:
+            if alive(pid) and b"spawn_main" in Path(f"/proc/{pid}/cmdline").read_bytes():
+                found.add(pid)
+        except (FileNotFoundError, ProcessLookupError):
+            pass
+    return found
 
 
 def assert_idle(pids, seconds: float = 1.0) -> None:
@@ -165,6 +191,40 @@ def test_the_store_is_bounded_by_bytes(app_with):
     assert store.total_bytes() == 0
 
 
+def test_uploads_are_read_in_a_reader_process_replaced_when_it_dies(tmp_path, caplog):
+    workers = FitWorkers(JobStore(tmp_path / "jobs.sqlite"))
+    big = to_csv(make_dataset("timeseries", ("viscous",), seed=4, n=300_000)[0]).encode()
+    limit = 2 * len(big)
+    expected = parse_csv(SHORT)
+    before = spawned(os.getpid())
+    try:
+        read = asyncio.run(workers.read(SHORT, None, limit))
+        assert read.kind == "steady"
+        np.testing.assert_array_equal(read.columns["F"], expected.columns["F"])
+        [first] = spawned(os.getpid()) - before
+        # killed while idle: the next upload is read by a new reader
+        os.kill(first, signal.SIGKILL)
+        while alive(first):
+            time.sleep(0.01)
+        read = asyncio.run(workers.read(SHORT, None, limit))
+        np.testing.assert_array_equal(read.columns["v"], expected.columns["v"])
+        [second] = spawned(os.getpid()) - before
+
+        async def killed_midway():
+            reading = asyncio.ensure_future(workers.read(big, None, limit))
+            await asyncio.sleep(0.3)  # 15 MB take about a second to parse
+            os.kill(second, signal.SIGKILL)
+            return await reading
+
+        # killed while it parsed: the upload is read again by a third
+        assert asyncio.run(killed_midway()).n == 300_000
+        assert len(spawned(os.getpid()) - before - {second}) == 1
+        assert caplog.text.count("the upload reader died (attempt 1") == 2
+    finally:
+        workers.shutdown()
+    assert not spawned(os.getpid()) - before
+
+
 # ---------------------------------------------------------------------------------
 # real server processes
 # ---------------------------------------------------------------------------------
@@ -174,14 +234,6 @@ def free_port() -> int:
     with socket.socket() as sock:
         sock.bind(("127.0.0.1", 0))
         return sock.getsockname()[1]
-
-
-def alive(pid: int) -> bool:
-    """Whether the process runs (a zombie nobody reaped does not)."""
-    try:
-        return Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0] != "Z"
-    except (FileNotFoundError, ProcessLookupError):
-        return False
 
 
 class Server:
@@ -404,12 +456,6 @@ def test_memory_returns_after_oversize_uploads_and_finished_fits(servers):
     assert server.rss_mb(workers=True) - warm < 150
 
 
-def spawned_workers(server: Server) -> list[int]:
-    """The server's worker processes (not multiprocessing's resource tracker)."""
-    return [pid for pid in children(server.process.pid)
-            if b"spawn_main" in Path(f"/proc/{pid}/cmdline").read_bytes()]
-
-
 #: What a clean log never holds: an exception nobody read (the pool's error for a run its
 #: client left), a traceback (a worker killed by a signal meant for the server), and the
 #: resource tracker's report of semaphores or memory a pool did not release.
@@ -426,7 +472,7 @@ def test_a_simulation_its_client_left_is_ended_and_the_log_stays_clean(servers):
                          "delta": 7.3, "s": 53.6, "max_steps": 1_000_000})
     head = (f"POST /api/simulate HTTP/1.1\r\nHost: 127.0.0.1:{server.port}\r\n"
             f"Content-Type: application/json\r\nContent-Length: {len(body)}\r\n\r\n").encode()
-    [first_worker] = spawned_workers(server)
+    [first_worker] = spawned(server.process.pid)
     with socket.create_connection(("127.0.0.1", server.port)) as sock:
         sock.sendall(head + body)
         time.sleep(1.5)
@@ -447,7 +493,7 @@ def test_a_simulation_its_client_left_is_ended_and_the_log_stays_clean(servers):
                                     {"Content-Type": "application/json"})
     assert status == 200
     assert orjson.loads(answer)["u_ba"] == pytest.approx(expected.u_ba[1], rel=1e-12)
-    assert len(spawned_workers(server)) == 1
+    assert len(spawned(server.process.pid)) == 1
     code, log = server.shut_down(signal.SIGINT, group=True)
     assert code == 0
     assert not [line for line in log.splitlines() if any(word in line for word in UNCLEAN)]
@@ -470,7 +516,8 @@ def test_a_shutdown_ends_every_worker_and_leaks_nothing(servers, tmp_path, sig, 
     wait_status(get, cancelled, {"cancelled"}, 5)
     running = orjson.loads(server.post_file("/api/fit/jobs", LONG, "long.csv")[1])["id"]
     wait_status(get, running, {"running"}, 30)
-    assert len(spawned_workers(server)) == 2  # the simulation worker and a fit worker
+    # the simulation worker, the upload reader and a fit worker
+    assert len(spawned(server.process.pid)) == 3
     code, log = server.shut_down(sig, group)
     # uvicorn shuts down in order, then raises a SIGTERM again to end with it
     assert code == (0 if sig == signal.SIGINT else -signal.SIGTERM)

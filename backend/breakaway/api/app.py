@@ -67,7 +67,8 @@ def create_app() -> FastAPI:
     store = JobStore(settings.data_dir / "jobs.sqlite", max_bytes=settings.jobs_max_bytes,
                      max_age_s=settings.jobs_max_age_s)
     app.state.fit_workers = FitWorkers(store, workers=settings.fit_workers,
-                                       queue=settings.fit_queue, timeout_s=settings.fit_timeout_s)
+                                       queue=settings.fit_queue, timeout_s=settings.fit_timeout_s,
+                                       niceness=settings.fit_niceness)
     app.add_exception_handler(RequestValidationError, request_validation_handler)
     app.add_exception_handler(StarletteHTTPException, http_error_handler)
     for router in ROUTERS:

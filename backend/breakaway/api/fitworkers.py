@@ -9,6 +9,11 @@ going away) is seen within a quarter second: the fit stops at its next progress
 checkpoint, and a fit still running half a second later has its worker process ended,
 so the CPU is free within a second either way.
 
+Uploads are parsed in a reader process of their own, at the server's priority (a fit
+slot may be busy for minutes, and the page waits for the answer): ``parse_csv`` holds
+the interpreter's lock for about a second per 15 MB, which in a thread of the server
+held its event loop as long (benchmarks/bench_lecture.py).
+
 Jobs, their progress and their results live in the :class:`~.jobstore.JobStore`, which
 the worker processes write and every server process reads.
 """
@@ -23,7 +28,7 @@ from concurrent.futures.process import BrokenProcessPool
 from pathlib import Path
 from typing import Awaitable, Callable
 
-from ..identify import DataError, Dataset, FitError, diagnose, report
+from ..identify import DataError, Dataset, FitError, diagnose, parse_csv, report
 from ..identify.panel import residuals_csv, series
 from .jobstore import JobStore
 from .processes import WorkerProcess
@@ -71,21 +76,17 @@ def run_fit(db_path: str, job_id: str, data: Dataset) -> None:
                                             "has the details")
 
 
-#: Scheduling niceness of the fit processes: a fit is batch work, and the explorer's
-#: requests (in the server process) and the ramp simulations come first when the CPU
-#: is short (benchmarks/bench_lecture.py).
-FIT_NICENESS = 10
-
-
 class FitWorkers:
-    """``workers`` fit processes and a waiting room of ``queue``, over one job store."""
+    """``workers`` fit processes and a waiting room of ``queue``, over one job store; the
+    processes run at ``niceness`` (added to the server's)."""
 
     def __init__(self, store: JobStore, workers: int = 2, queue: int = 2,
-                 timeout_s: float = 600.0) -> None:
+                 timeout_s: float = 600.0, niceness: int = 10) -> None:
         self.store = store
         self.capacity = workers + queue
         self.timeout_s = timeout_s
-        self._slots = [WorkerProcess(niceness=FIT_NICENESS) for _ in range(workers)]
+        self._slots = [WorkerProcess(niceness) for _ in range(workers)]
+        self._reader = WorkerProcess()  # parses the uploads
         self._free: asyncio.Queue[WorkerProcess] | None = None
         self._tasks: set[asyncio.Task] = set()
 
@@ -96,6 +97,20 @@ class FitWorkers:
     def create(self, source: str) -> str | None:
         """A queued job, or None when the pool and its queue are full."""
         return self.store.create(source, self.capacity)
+
+    async def read(self, content: bytes, kind: str | None, max_bytes: int) -> Dataset:
+        """``parse_csv(content, kind, max_bytes)`` in the reader process; its
+        :class:`DataError` as it raises it. A reader that died is replaced once."""
+        for attempt in (1, 2):
+            try:
+                return await asyncio.wrap_future(
+                    self._reader.submit(parse_csv, content, kind, max_bytes))
+            except BrokenProcessPool:
+                self._reader.end()
+                log.warning("the upload reader died (attempt %d, a %d-byte file)", attempt,
+                            len(content))
+        raise DataError("the server could not read this file (out of memory?); try again "
+                        "or send a smaller file")
 
     def start(self, job_id: str, data: Dataset) -> None:
         """Run the job in the background (``POST /api/fit/jobs``)."""
@@ -160,5 +175,5 @@ class FitWorkers:
     def shutdown(self) -> None:
         for task in self._tasks:
             task.cancel()
-        for slot in self._slots:
-            slot.end()
+        for worker in (*self._slots, self._reader):
+            worker.end()
