@@ -41,7 +41,7 @@ ROUTERS: list[APIRouter] = [
 
 @asynccontextmanager
 async def lifespan(app: FastAPI) -> AsyncIterator[None]:
-    app.state.simulations.warm_up()  # start the worker now, not on the first click
+    app.state.simulations.start()  # the worker starts now, not on the first click
     # The first frame pays for lazy imports and loading the compiled kernels (~0.25 s):
     # paid here, before the port opens, not by the first class that drags a slider
     # while every request behind it waits (health then took 300 ms; bench_lecture.py).

@@ -109,7 +109,10 @@ class SimulationRunner:
             raise SimulatorBusy("the server is shutting down")
         return self._worker.submit(fn, *args)
 
-    def warm_up(self) -> Future:
+    def start(self) -> Future:
+        """Take runs (again, after a shutdown: an app's lifespan may run more than once)
+        and start the worker now, warmed up."""
+        self._closed = False
         future = self._submit(_warm_up)
         future.add_done_callback(_report_warm_up)
         return future
