@@ -41,7 +41,9 @@ ROUTERS: list[APIRouter] = [
 
 @asynccontextmanager
 async def lifespan(app: FastAPI) -> AsyncIterator[None]:
-    app.state.simulations.start()  # the worker starts now, not on the first click
+    # the workers start now, not on the first click or upload
+    app.state.simulations.start()
+    app.state.fit_workers.start_reader()
     # The first frame pays for lazy imports and loading the compiled kernels (~0.25 s):
     # paid here, before the port opens, not by the first class that drags a slider
     # while every request behind it waits (health then took 300 ms; bench_lecture.py).

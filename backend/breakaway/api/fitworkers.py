@@ -9,10 +9,10 @@ going away) is seen within a quarter second: the fit stops at its next progress
 checkpoint, and a fit still running half a second later has its worker process ended,
 so the CPU is free within a second either way.
 
-Uploads are parsed in a reader process of their own, at the server's priority (a fit
-slot may be busy for minutes, and the page waits for the answer): ``parse_csv`` holds
-the interpreter's lock for about a second per 15 MB, which in a thread of the server
-held its event loop as long (benchmarks/bench_lecture.py).
+Uploads are parsed in a reader process of their own, started with the server and at
+its priority (a fit slot may be busy for minutes, and the page waits for the answer):
+``parse_csv`` holds the interpreter's lock for about a second per 15 MB, which in a
+thread of the server held its event loop as long (benchmarks/bench_lecture.py).
 
 Jobs, their progress and their results live in the :class:`~.jobstore.JobStore`, which
 the worker processes write and every server process reads.
@@ -41,6 +41,9 @@ POLL_S = 0.25
 GRACE_S = 0.5
 #: Seconds between progress rows a worker writes (a cancel is read with each).
 PROGRESS_EVERY_S = 0.2
+#: Seconds a fresh fit worker may take to start (import the engine) before its fit's
+#: time limit begins anyway.
+START_S = 60.0
 
 
 class Cancelled(Exception):
@@ -76,6 +79,10 @@ def run_fit(db_path: str, job_id: str, data: Dataset) -> None:
                                             "has the details")
 
 
+def _imported() -> None:
+    """Nothing: a worker that runs it has imported this module, and the engine with it."""
+
+
 class FitWorkers:
     """``workers`` fit processes and a waiting room of ``queue``, over one job store; the
     processes run at ``niceness`` (added to the server's)."""
@@ -97,6 +104,11 @@ class FitWorkers:
     def create(self, source: str) -> str | None:
         """A queued job, or None when the pool and its queue are full."""
         return self.store.create(source, self.capacity)
+
+    def start_reader(self) -> None:
+        """Start the upload reader now: it imports the identification engine (seconds),
+        which the first upload would otherwise wait for."""
+        self._reader.warm_up(_imported)
 
     async def read(self, content: bytes, kind: str | None, max_bytes: int) -> Dataset:
         """``parse_csv(content, kind, max_bytes)`` in the reader process; its
@@ -138,7 +150,10 @@ class FitWorkers:
             store.finish(job_id, "cancelled")
             return
         loop = asyncio.get_running_loop()
-        started = loop.time()  # the time limit counts from here, not from the queue
+        # the time limit counts from the fit's first progress in its worker, not from the
+        # queue nor from a fresh worker's start-up (its imports take seconds on a busy
+        # machine); a worker that never begins is stopped START_S after the limit
+        submitted, begun = loop.time(), None
         future = asyncio.wrap_future(slot.submit(run_fit, str(store.path), job_id, data))
         # a fit whose process was ended still resolves its future (broken pool): read it
         future.add_done_callback(lambda f: f.cancelled() or f.exception())
@@ -166,7 +181,9 @@ class FitWorkers:
                 slot.end()  # did not reach a checkpoint in time: end its process
                 store.finish(job_id, "cancelled")
                 return
-            if now - started > self.timeout_s:
+            if begun is None and store.running(job_id):
+                begun = now
+            if now - (submitted + START_S if begun is None else begun) > self.timeout_s:
                 slot.end()
                 store.finish(job_id, "error", error=f"the fit took longer than "
                                                     f"{self.timeout_s:g} s and was stopped")

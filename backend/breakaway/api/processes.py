@@ -20,13 +20,17 @@ that clean:
 from __future__ import annotations
 
 import contextlib
+import logging
 import multiprocessing
 import os
 import signal
 import threading
 import time
 from concurrent.futures import Future, ProcessPoolExecutor
+from concurrent.futures.process import BrokenProcessPool
 from typing import Any, Callable, Iterator
+
+log = logging.getLogger("breakaway.api")
 
 #: The signals a worker leaves to the server.
 _SERVER_SIGNALS = {signal.SIGINT, signal.SIGTERM}
@@ -85,6 +89,13 @@ class WorkerProcess:
             with _signals_held():  # the pool spawns its process within submit
                 return self._pool.submit(fn, *args)
 
+    def warm_up(self, fn: Callable[[], Any]) -> Future:
+        """Start the worker now and run ``fn`` in it (its imports, compiled code), so
+        that the first request does not wait for them; a failure is logged."""
+        future = self.submit(fn)
+        future.add_done_callback(_report_warm_up)
+        return future
+
     def end(self) -> None:
         """End the worker now, if there is one: a running task is abandoned (its future
         fails with ``BrokenProcessPool``), a waiting one is cancelled, and the pool's
@@ -98,3 +109,12 @@ class WorkerProcess:
         # waits for the pool's management thread, which sees the process gone, fails the
         # running future, closes the queues and reaps the process: some 30 ms
         pool.shutdown(wait=True, cancel_futures=True)
+
+
+def _report_warm_up(future: Future) -> None:
+    """A warm-up's outcome, read so that a failure is logged, not lost (a worker ended by a
+    restart or the shutdown before it was warm is no failure)."""
+    if future.cancelled() or isinstance(future.exception(), BrokenProcessPool):
+        return
+    if future.exception() is not None:
+        log.error("a worker's warm-up failed", exc_info=future.exception())

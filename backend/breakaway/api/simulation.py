@@ -113,9 +113,7 @@ class SimulationRunner:
         """Take runs (again, after a shutdown: an app's lifespan may run more than once)
         and start the worker now, warmed up."""
         self._closed = False
-        future = self._submit(_warm_up)
-        future.add_done_callback(_report_warm_up)
-        return future
+        return self._worker.warm_up(_warm_up)
 
     async def run(self, timeout: float, *args: Any, target=run_simulation,
                   wait: float | None = None,
@@ -188,11 +186,3 @@ class SimulationRunner:
         self._closed = True
         self._worker.end()
 
-
-def _report_warm_up(future: Future) -> None:
-    """The warm-up's outcome, read so that a failure is logged, not lost (a worker ended
-    by a restart or the shutdown before it was warm is no failure)."""
-    if future.cancelled() or isinstance(future.exception(), BrokenProcessPool):
-        return
-    if future.exception() is not None:
-        log.error("the simulation worker's warm-up failed", exc_info=future.exception())
