@@ -14,15 +14,15 @@ The server (``breakaway serve``, as a teacher starts it) gets, for ``--seconds``
   a time (``BREAKAWAY_FIT_WORKERS=2``); the third waits for a worker.
 
 Printed per configuration: explore requests, errors, p50/p99/worst latency; health p99
-and worst; uploads accepted, fits finished; the second (of the measurement) that held
-most of the slowest answers; the load average. The configurations, each on a fresh
-server, in turn within one run (``--rounds`` times, so that the machine's other load
-falls on each):
+and worst; uploads accepted and the seconds their answers took, fits finished; the
+second (of the measurement) that held most of the slowest answers; the load average.
+The configurations, each on a fresh server, in turn within one run (``--rounds``
+times, so that the machine's other load falls on each):
 
-- the server as it ships: uploads parsed in a reader process, fits in worker processes
-  at niceness 10;
-- the fit workers at the server's priority (``BREAKAWAY_FIT_NICENESS=0``), the obvious
-  alternative;
+- the server as it ships: uploads parsed in a reader process and fitted in worker
+  processes, both at niceness 10;
+- the reader and the fit workers at the server's priority (``BREAKAWAY_FIT_NICENESS=0``),
+  the obvious alternative;
 - uploads parsed in the server's threads, as before the reader process (parse_csv holds
   the interpreter's lock for about a second per 15 MB, and the event loop waits for it).
 
@@ -58,7 +58,8 @@ UPLOADS_AT_S = 2.0
 #: label: (environment, uploads parsed in the server's threads)
 CONFIGURATIONS = {
     "as shipped": ({}, False),
-    "fit workers at the server's priority": ({"BREAKAWAY_FIT_NICENESS": "0"}, False),
+    "reader and fit workers at the server's priority": ({"BREAKAWAY_FIT_NICENESS": "0"},
+                                                         False),
     "uploads parsed in the server's threads": ({}, True),
 }
 
@@ -133,12 +134,13 @@ def upload(content: bytes) -> tuple[bytes, str]:
 async def fitter(port, content, deadline, stats):
     body, content_type = upload(content)
     while time.monotonic() < deadline:
+        sent = time.perf_counter()
         status, answer = await once(port, "POST", "/api/fit/jobs", body, content_type)
         if status != 202:
             stats["fit_refused"] += 1
             await asyncio.sleep(1.0)
             continue
-        stats["uploads"] += 1
+        stats["uploads"].append(time.perf_counter() - sent)
         job = orjson.loads(answer)["id"]
         while time.monotonic() < deadline:
             await asyncio.sleep(1.0)
@@ -162,7 +164,7 @@ async def prober(port, started, deadline, stats):
 
 
 async def lecture(port, seconds, students, fits, content) -> dict:
-    stats = {"explore": [], "health": [], "errors": 0, "uploads": 0, "fits_done": 0,
+    stats = {"explore": [], "health": [], "errors": 0, "uploads": [], "fits_done": 0,
              "fit_refused": 0}
     bodies = slider_bodies(256)
     started = time.perf_counter()
@@ -240,7 +242,8 @@ def report(label: str, stats: dict, seconds: float) -> str:
     return (f"  {label}: explore {len(explore)} requests ({len(explore) / seconds:.0f}/s), "
             f"p50 {pct(explore, .5):.1f} ms, p99 {pct(explore, .99):.1f} ms, worst "
             f"{max(explore):.0f} ms; health p99 {pct(health, .99):.1f} ms, worst "
-            f"{max(health):.1f} ms; errors {stats['errors']}; uploads {stats['uploads']}, "
+            f"{max(health):.1f} ms; errors {stats['errors']}; uploads {len(stats['uploads'])} "
+            f"(answered in {' '.join(f'{s:.1f}' for s in sorted(stats['uploads']))} s), "
             f"fits finished {stats['fits_done']}, refused {stats['fit_refused']}; "
             f"{slowest_second(stats['explore'] + stats['health'])} "
             f"(load average {load_average()})")

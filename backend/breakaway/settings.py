@@ -46,9 +46,9 @@ class Settings(BaseSettings):
     #: beyond both is refused with 429 before its upload is read.
     fit_workers: int = 2
     fit_queue: int = 2
-    #: Added to the fit processes' scheduling niceness (0 to 19): a fit is batch work,
-    #: and the explorer's requests and the simulations come first when the CPU is short
-    #: (benchmarks/bench_lecture.py).
+    #: Added to the scheduling niceness of the fit processes and the upload reader (0 to
+    #: 19): they are batch work, and the explorer's requests and the simulations come
+    #: first when the CPU is short (benchmarks/bench_lecture.py).
     fit_niceness: int = Field(10, ge=0, le=19)
     #: A fit's time limit [s], counted from when it starts running.
     fit_timeout_s: float = 600.0

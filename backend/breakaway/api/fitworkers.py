@@ -9,10 +9,12 @@ going away) is seen within a quarter second: the fit stops at its next progress
 checkpoint, and a fit still running half a second later has its worker process ended,
 so the CPU is free within a second either way.
 
-Uploads are parsed in a reader process of their own, started with the server and at
-its priority (a fit slot may be busy for minutes, and the page waits for the answer):
-``parse_csv`` holds the interpreter's lock for about a second per 15 MB, which in a
-thread of the server held its event loop as long (benchmarks/bench_lecture.py).
+Uploads are parsed in a reader process of their own, started with the server (a fit
+slot may be busy for minutes, and the page waits for the answer): ``parse_csv`` holds
+the interpreter's lock for about a second per 15 MB, which in a thread of the server
+held its event loop as long. The reader runs at the fits' niceness: at the server's
+priority it still took the CPU from the event loop while three uploads were read
+(benchmarks/bench_lecture.py).
 
 Jobs, their progress and their results live in the :class:`~.jobstore.JobStore`, which
 the worker processes write and every server process reads.
@@ -84,8 +86,8 @@ def _imported() -> None:
 
 
 class FitWorkers:
-    """``workers`` fit processes and a waiting room of ``queue``, over one job store; the
-    processes run at ``niceness`` (added to the server's)."""
+    """``workers`` fit processes and a waiting room of ``queue``, over one job store, and
+    the upload reader; the processes run at ``niceness`` (added to the server's)."""
 
     def __init__(self, store: JobStore, workers: int = 2, queue: int = 2,
                  timeout_s: float = 600.0, niceness: int = 10) -> None:
@@ -93,7 +95,7 @@ class FitWorkers:
         self.capacity = workers + queue
         self.timeout_s = timeout_s
         self._slots = [WorkerProcess(niceness) for _ in range(workers)]
-        self._reader = WorkerProcess()  # parses the uploads
+        self._reader = WorkerProcess(niceness)  # parses the uploads
         self._free: asyncio.Queue[WorkerProcess] | None = None
         self._tasks: set[asyncio.Task] = set()
 
