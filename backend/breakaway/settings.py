@@ -5,6 +5,7 @@ from __future__ import annotations
 from functools import lru_cache
 from pathlib import Path
 
+from pydantic import Field
 from pydantic_settings import BaseSettings, SettingsConfigDict
 
 _REPO = Path(__file__).resolve().parents[2]
@@ -52,6 +53,10 @@ class Settings(BaseSettings):
     #: beyond both is refused with 429 before its upload is read.
     fit_workers: int = 2
     fit_queue: int = 2
+    #: Added to the scheduling niceness of the fit processes and the upload reader (0 to
+    #: 19): they are batch work, and the explorer's requests and the simulations come
+    #: first when the CPU is short (benchmarks/bench_lecture.py).
+    fit_niceness: int = Field(10, ge=0, le=19)
     #: A fit's time limit [s], counted from when it starts running.
     fit_timeout_s: float = 600.0
     #: Bounds of the job store: finished jobs older than this [s] are dropped, then the

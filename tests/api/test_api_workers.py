@@ -1,10 +1,13 @@
-"""Fits in worker processes, as a lecture hall meets them: a cancel frees the CPU within
-a second (DELETE, or the client of POST /api/fit leaving), the time limit counts from
-the start of the work, the queue is bounded, jobs live in SQLite across a restart and
-across two server processes, and a burst of oversize uploads leaves the memory alone."""
+"""Fits and simulations in worker processes, as a lecture hall meets them: a cancel frees
+the CPU within a second (DELETE, or the client of POST /api/fit leaving), the time limit
+counts from the start of the work, the queue is bounded, jobs live in SQLite across a
+restart and across two server processes, a burst of oversize uploads leaves the memory
+alone, a client that leaves mid-simulation leaves the next requests answered and the log
+clean, and a shutdown ends every worker and leaks nothing."""
 
 from __future__ import annotations
 
+import asyncio
 import os
 import signal
 import socket
@@ -16,12 +19,18 @@ import time
 import urllib.request
 from pathlib import Path
 
+import numpy as np
 import orjson
 import pytest
 from fastapi.testclient import TestClient
 
 from breakaway.api.app import create_app
+from breakaway.api.fitworkers import FitWorkers
+from breakaway.api.jobstore import JobStore
+from breakaway.dynamics import simulate_breakaway
+from breakaway.identify import parse_csv
 from breakaway.identify.synthetic import make_dataset, to_csv
+from breakaway.params import DEFAULTS
 from breakaway.settings import get_settings
 
 #: A fit of about 7 s here (two effects on 40,000 rows).
@@ -62,6 +71,27 @@ def children(pid: int) -> list[int]:
         out += kids
         frontier += kids
     return out
+
+
+def alive(pid: int) -> bool:
+    """Whether the process runs (a zombie nobody reaped does not)."""
+    try:
+        return Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0] != "Z"
+    except (FileNotFoundError, ProcessLookupError):
+        return False
+
+
+def spawned(parent: int) -> set[int]:
+    """The running worker processes ``parent`` spawned (not multiprocessing's resource
+    tracker)."""
+    found = set()
+    for pid in children(parent):
+        try:
+            if alive(pid) and b"spawn_main" in Path(f"/proc/{pid}/cmdline").read_bytes():
+                found.add(pid)
+        except (FileNotFoundError, ProcessLookupError):
+            pass
+    return found
 
 
 def assert_idle(pids, seconds: float = 1.0) -> None:
@@ -131,7 +161,8 @@ def test_the_time_limit_counts_from_the_start_and_the_queue_is_bounded(app_with)
     assert stopped["status"] == "error" and "longer than 2 s" in stopped["error"]
     # the short fit waited about 2 s for the worker, then had its own 2 s
     done = wait_status(get, waiting["id"], {"done", "error", "cancelled"}, timeout=30)
-    assert done["status"] == "done" and done["report"]["kind"] == "steady"
+    assert done["status"] == "done", done["error"]
+    assert done["report"]["kind"] == "steady"
 
 
 def test_jobs_outlive_a_restart_of_the_app(app_with):
@@ -161,6 +192,40 @@ def test_the_store_is_bounded_by_bytes(app_with):
     assert store.total_bytes() == 0
 
 
+def test_uploads_are_read_in_a_reader_process_replaced_when_it_dies(tmp_path, caplog):
+    workers = FitWorkers(JobStore(tmp_path / "jobs.sqlite"))
+    big = to_csv(make_dataset("timeseries", ("viscous",), seed=4, n=300_000)[0]).encode()
+    limit = 2 * len(big)
+    expected = parse_csv(SHORT)
+    before = spawned(os.getpid())
+    try:
+        read = asyncio.run(workers.read(SHORT, None, limit))
+        assert read.kind == "steady"
+        np.testing.assert_array_equal(read.columns["F"], expected.columns["F"])
+        [first] = spawned(os.getpid()) - before
+        # killed while idle: the next upload is read by a new reader
+        os.kill(first, signal.SIGKILL)
+        while alive(first):
+            time.sleep(0.01)
+        read = asyncio.run(workers.read(SHORT, None, limit))
+        np.testing.assert_array_equal(read.columns["v"], expected.columns["v"])
+        [second] = spawned(os.getpid()) - before
+
+        async def killed_midway():
+            reading = asyncio.ensure_future(workers.read(big, None, limit))
+            await asyncio.sleep(0.3)  # 15 MB take about a second to parse
+            os.kill(second, signal.SIGKILL)
+            return await reading
+
+        # killed while it parsed: the upload is read again by a third
+        assert asyncio.run(killed_midway()).n == 300_000
+        assert len(spawned(os.getpid()) - before - {second}) == 1
+        assert caplog.text.count("the upload reader died (attempt 1") == 2
+    finally:
+        workers.shutdown()
+    assert not spawned(os.getpid()) - before
+
+
 # ---------------------------------------------------------------------------------
 # real server processes
 # ---------------------------------------------------------------------------------
@@ -173,14 +238,19 @@ def free_port() -> int:
 
 
 class Server:
+    """``breakaway serve`` in its own session, its log (stderr) in a file."""
+
     def __init__(self, data_dir: Path, workers: int = 1):
         self.port = free_port()
         self.url = f"http://127.0.0.1:{self.port}"
+        self.log_path = data_dir.parent / f"server-{self.port}.log"
+        data_dir.parent.mkdir(parents=True, exist_ok=True)
         env = {**os.environ, "BREAKAWAY_DATA_DIR": str(data_dir)}
-        self.process = subprocess.Popen(
-            [sys.executable, "-m", "breakaway", "serve", "--port", str(self.port),
-             "--workers", str(workers)], env=env, stdout=subprocess.DEVNULL,
-            stderr=subprocess.DEVNULL, start_new_session=True)
+        with open(self.log_path, "wb") as log:
+            self.process = subprocess.Popen(
+                [sys.executable, "-m", "breakaway", "serve", "--port", str(self.port),
+                 "--workers", str(workers)], env=env, stdout=subprocess.DEVNULL,
+                stderr=log, start_new_session=True)
         deadline = time.monotonic() + 60
         while True:
             try:
@@ -225,6 +295,20 @@ class Server:
     def stop(self, sig=signal.SIGTERM):
         os.killpg(self.process.pid, sig)
         self.process.wait(timeout=20)
+
+    def shut_down(self, sig: int, group: bool) -> tuple[int, str]:
+        """Stop the server with ``sig`` (to its whole process group, as a terminal's
+        Ctrl+C does, or to the server alone, as ``docker stop`` does); its exit code and
+        its log once every process it started has ended (the resource tracker writes
+        its leak report last)."""
+        started = children(self.process.pid)
+        (os.killpg if group else os.kill)(self.process.pid, sig)
+        code = self.process.wait(timeout=30)
+        deadline = time.monotonic() + 10
+        while [pid for pid in started if alive(pid)]:
+            assert time.monotonic() < deadline, "a worker outlived the server"
+            time.sleep(0.05)
+        return code, self.log_path.read_text()
 
 
 @pytest.fixture
@@ -373,7 +457,14 @@ def test_memory_returns_after_oversize_uploads_and_finished_fits(servers):
     assert server.rss_mb(workers=True) - warm < 150
 
 
-def test_a_simulation_its_client_left_is_ended(servers):
+#: What a clean log never holds: an exception nobody read (the pool's error for a run its
+#: client left), a traceback (a worker killed by a signal meant for the server), and the
+#: resource tracker's report of semaphores or memory a pool did not release.
+UNCLEAN = ("never retrieved", "BrokenProcessPool", "Traceback", "KeyboardInterrupt",
+           "resource_tracker", "leaked", "worker died")
+
+
+def test_a_simulation_its_client_left_is_ended_and_the_log_stays_clean(servers):
     server = servers()
     # a damper fitted in kN under the note's N/s rates: none breaks away, each rate
     # takes its whole step budget (about 0.7 s here), 40 rates about half a minute
@@ -382,14 +473,58 @@ def test_a_simulation_its_client_left_is_ended(servers):
                          "delta": 7.3, "s": 53.6, "max_steps": 1_000_000})
     head = (f"POST /api/simulate HTTP/1.1\r\nHost: 127.0.0.1:{server.port}\r\n"
             f"Content-Type: application/json\r\nContent-Length: {len(body)}\r\n\r\n").encode()
-    workers = children(server.process.pid)
+    # both workers warm: the simulator answers, and the upload reader refuses an empty file
+    simulate = orjson.dumps({"k": [1.0, 4.0]})
+    json = {"Content-Type": "application/json"}
+    assert server.request("POST", "/api/simulate", simulate, json)[0] == 200
+    assert server.post_file("/api/fit", b"")[0] == 422
+    workers = spawned(server.process.pid)
     with socket.create_connection(("127.0.0.1", server.port)) as sock:
         sock.sendall(head + body)
         time.sleep(1.5)
-        assert cpu_seconds(workers + children(server.process.pid)) > 0.5  # it was running
     time.sleep(1.0)  # the server notices within a second
     assert_idle([server.process.pid] + children(server.process.pid))
-    # and the next request is served by a fresh worker
-    status, answer = server.request("POST", "/api/simulate", orjson.dumps({"k": [1.0]}),
-                                    {"Content-Type": "application/json"})
-    assert status == 200 and orjson.loads(answer)["u_ba"][0] is not None
+    # the simulation worker was ended in its run (a finished run leaves it be); the
+    # reader was left alone
+    assert len(workers - spawned(server.process.pid)) == 1
+    # the next requests are served by one fresh worker, with the model's values
+    params = {name: DEFAULTS[name] for name in ("Fc", "Fs", "V", "delta", "sigma", "s", "m",
+                                                  "z_ba")}
+    expected = simulate_breakaway([1.0, 4.0], **params, max_steps=1_000_000)
+    for _ in range(3):
+        status, answer = server.request("POST", "/api/simulate", simulate, json)
+        assert status == 200
+        assert orjson.loads(answer)["u_ba"] == pytest.approx(expected.u_ba.tolist(), rel=1e-12)
+    status, answer = server.request("POST", "/api/ramp", orjson.dumps({"k": 4.0}), json)
+    assert status == 200
+    assert orjson.loads(answer)["u_ba"] == pytest.approx(expected.u_ba[1], rel=1e-12)
+    assert len(spawned(server.process.pid)) == 2
+    code, log = server.shut_down(signal.SIGINT, group=True)
+    assert code == 0
+    assert not [line for line in log.splitlines() if any(word in line for word in UNCLEAN)]
+
+
+@pytest.mark.parametrize("sig, group", [(signal.SIGINT, True), (signal.SIGTERM, False)],
+                         ids=["ctrl-c-to-the-group", "sigterm-to-the-server"])
+def test_a_shutdown_ends_every_worker_and_leaks_nothing(servers, tmp_path, sig, group):
+    server = servers()
+    status, _ = server.request("POST", "/api/simulate", orjson.dumps({"k": [1.0]}),
+                               {"Content-Type": "application/json"})
+    assert status == 200
+    # a fit done in one fit worker, one cancelled in the other (its process ended), and
+    # one running in the first at the shutdown
+    assert server.post_file("/api/fit", SHORT, "short.csv")[0] == 200
+    get = lambda job_id: server.get(f"/api/fit/jobs/{job_id}")  # noqa: E731
+    cancelled = orjson.loads(server.post_file("/api/fit/jobs", LONG, "long.csv")[1])["id"]
+    wait_status(get, cancelled, {"running"}, 30)
+    assert server.request("DELETE", f"/api/fit/jobs/{cancelled}")[0] == 200
+    wait_status(get, cancelled, {"cancelled"}, 5)
+    running = orjson.loads(server.post_file("/api/fit/jobs", LONG, "long.csv")[1])["id"]
+    wait_status(get, running, {"running"}, 30)
+    # the simulation worker, the upload reader and a fit worker
+    assert len(spawned(server.process.pid)) == 3
+    code, log = server.shut_down(sig, group)
+    # uvicorn shuts down in order, then raises a SIGTERM again to end with it
+    assert code == (0 if sig == signal.SIGINT else -signal.SIGTERM)
+    assert "Application shutdown complete" in log
+    assert not [line for line in log.splitlines() if any(word in line for word in UNCLEAN)]

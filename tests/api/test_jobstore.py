@@ -29,11 +29,14 @@ def test_capacity_counts_this_process_active_jobs(store):
 
 def test_progress_cancel_and_results(store):
     job = store.create("a.csv", capacity=1)
+    assert not store.running(job)  # queued until its worker writes progress
     assert store.progress(job, 0.25, "fitting the base model") is False
     assert store.get(job)["status"] == "running" and store.get(job)["progress"] == 0.25
+    assert store.running(job)
     assert store.request_cancel(job) is True
     assert store.progress(job, 0.5, "next") is True  # the worker learns of the cancel
     store.finish(job, "cancelled")
+    assert not store.running(job) and not store.running("nope")
     cancelled = store.get(job)
     assert cancelled["status"] == "cancelled" and cancelled["progress"] == 0.5
     assert store.request_cancel("nope") is False

@@ -43,7 +43,9 @@ ROUTERS: list[APIRouter] = [
 
 @asynccontextmanager
 async def lifespan(app: FastAPI) -> AsyncIterator[None]:
-    app.state.simulations.warm_up()  # start the worker now, not on the first click
+    # the workers start now, not on the first click or upload
+    app.state.simulations.start()
+    app.state.fit_workers.start_reader()
     # The first frame pays for lazy imports and loading the compiled kernels (~0.25 s):
     # paid here, before the port opens, not by the first class that drags a slider
     # while every request behind it waits (health then took 300 ms; bench_lecture.py).
@@ -70,7 +72,8 @@ def create_app() -> FastAPI:
     store = JobStore(settings.data_dir / "jobs.sqlite", max_bytes=settings.jobs_max_bytes,
                      max_age_s=settings.jobs_max_age_s)
     app.state.fit_workers = FitWorkers(store, workers=settings.fit_workers,
-                                       queue=settings.fit_queue, timeout_s=settings.fit_timeout_s)
+                                       queue=settings.fit_queue, timeout_s=settings.fit_timeout_s,
+                                       niceness=settings.fit_niceness)
     app.add_exception_handler(RequestValidationError, request_validation_handler)
     app.add_exception_handler(StarletteHTTPException, http_error_handler)
     for router in ROUTERS:

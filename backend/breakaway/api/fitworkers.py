@@ -9,6 +9,13 @@ going away) is seen within a quarter second: the fit stops at its next progress
 checkpoint, and a fit still running half a second later has its worker process ended,
 so the CPU is free within a second either way.
 
+Uploads are parsed in a reader process of their own, started with the server (a fit
+slot may be busy for minutes, and the page waits for the answer): ``parse_csv`` holds
+the interpreter's lock for about a second per 15 MB, which in a thread of the server
+held its event loop as long. The reader runs at the fits' niceness: at the server's
+priority it still took the CPU from the event loop while three uploads were read
+(benchmarks/bench_lecture.py).
+
 Jobs, their progress and their results live in the :class:`~.jobstore.JobStore`, which
 the worker processes write and every server process reads.
 """
@@ -17,18 +24,16 @@ from __future__ import annotations
 
 import asyncio
 import logging
-import multiprocessing
 import os
 import time
-from concurrent.futures import ProcessPoolExecutor
 from concurrent.futures.process import BrokenProcessPool
 from pathlib import Path
 from typing import Awaitable, Callable
 
-from ..identify import DataError, Dataset, FitError, diagnose, report
+from ..identify import DataError, Dataset, FitError, diagnose, parse_csv, report
 from ..identify.panel import residuals_csv, series
 from .jobstore import JobStore
-from .simulation import _exit_with_parent
+from .processes import WorkerProcess
 
 log = logging.getLogger("breakaway.api")
 
@@ -38,6 +43,9 @@ POLL_S = 0.25
 GRACE_S = 0.5
 #: Seconds between progress rows a worker writes (a cancel is read with each).
 PROGRESS_EVERY_S = 0.2
+#: Seconds a fresh fit worker may take to start (import the engine) before its fit's
+#: time limit begins anyway.
+START_S = 60.0
 
 
 class Cancelled(Exception):
@@ -73,52 +81,22 @@ def run_fit(db_path: str, job_id: str, data: Dataset) -> None:
                                             "has the details")
 
 
-#: Scheduling niceness of the fit processes: a fit is batch work, and the explorer's
-#: requests (in the server process) and the ramp simulations come first when the CPU
-#: is short (benchmarks/bench_lecture.py).
-FIT_NICENESS = 10
-
-
-def _start_fit_worker(parent: int) -> None:
-    os.nice(FIT_NICENESS)
-    _exit_with_parent(parent)
-
-
-class _Slot:
-    """One worker process (started on first use, ended to stop a fit at once)."""
-
-    def __init__(self) -> None:
-        self._pool: ProcessPoolExecutor | None = None
-
-    def submit(self, *args):
-        if self._pool is None:
-            self._pool = ProcessPoolExecutor(
-                max_workers=1, mp_context=multiprocessing.get_context("spawn"),
-                initializer=_start_fit_worker, initargs=(os.getpid(),))
-        return self._pool.submit(*args)
-
-    def kill(self) -> None:
-        pool, self._pool = self._pool, None
-        if pool is None:
-            return
-        processes = list((getattr(pool, "_processes", None) or {}).values())
-        for process in processes:
-            process.kill()
-        pool.shutdown(wait=False, cancel_futures=True)
-        for process in processes:
-            process.join(timeout=5)
+def _imported() -> None:
+    """Nothing: a worker that runs it has imported this module, and the engine with it."""
 
 
 class FitWorkers:
-    """``workers`` fit processes and a waiting room of ``queue``, over one job store."""
+    """``workers`` fit processes and a waiting room of ``queue``, over one job store, and
+    the upload reader; the processes run at ``niceness`` (added to the server's)."""
 
     def __init__(self, store: JobStore, workers: int = 2, queue: int = 2,
-                 timeout_s: float = 600.0) -> None:
+                 timeout_s: float = 600.0, niceness: int = 10) -> None:
         self.store = store
         self.capacity = workers + queue
         self.timeout_s = timeout_s
-        self._slots = [_Slot() for _ in range(workers)]
-        self._free: asyncio.Queue[_Slot] | None = None
+        self._slots = [WorkerProcess(niceness) for _ in range(workers)]
+        self._reader = WorkerProcess(niceness)  # parses the uploads
+        self._free: asyncio.Queue[WorkerProcess] | None = None
         self._tasks: set[asyncio.Task] = set()
 
     def full(self) -> bool:
@@ -128,6 +106,25 @@ class FitWorkers:
     def create(self, source: str) -> str | None:
         """A queued job, or None when the pool and its queue are full."""
         return self.store.create(source, self.capacity)
+
+    def start_reader(self) -> None:
+        """Start the upload reader now: it imports the identification engine (seconds),
+        which the first upload would otherwise wait for."""
+        self._reader.warm_up(_imported)
+
+    async def read(self, content: bytes, kind: str | None, max_bytes: int) -> Dataset:
+        """``parse_csv(content, kind, max_bytes)`` in the reader process; its
+        :class:`DataError` as it raises it. A reader that died is replaced once."""
+        for attempt in (1, 2):
+            try:
+                return await asyncio.wrap_future(
+                    self._reader.submit(parse_csv, content, kind, max_bytes))
+            except BrokenProcessPool:
+                self._reader.end()
+                log.warning("the upload reader died (attempt %d, a %d-byte file)", attempt,
+                            len(content))
+        raise DataError("the server could not read this file (out of memory?); try again "
+                        "or send a smaller file")
 
     def start(self, job_id: str, data: Dataset) -> None:
         """Run the job in the background (``POST /api/fit/jobs``)."""
@@ -149,13 +146,16 @@ class FitWorkers:
         finally:
             self._free.put_nowait(slot)
 
-    async def _watch(self, slot: _Slot, job_id: str, data: Dataset, gone) -> None:
+    async def _watch(self, slot: WorkerProcess, job_id: str, data: Dataset, gone) -> None:
         store = self.store
         if store.cancel_requested(job_id) or (gone and await gone()):
             store.finish(job_id, "cancelled")
             return
         loop = asyncio.get_running_loop()
-        started = loop.time()  # the time limit counts from here, not from the queue
+        # the time limit counts from the fit's first progress in its worker, not from the
+        # queue nor from a fresh worker's start-up (its imports take seconds on a busy
+        # machine); a worker that never begins is stopped START_S after the limit
+        submitted, begun = loop.time(), None
         future = asyncio.wrap_future(slot.submit(run_fit, str(store.path), job_id, data))
         # a fit whose process was ended still resolves its future (broken pool): read it
         future.add_done_callback(lambda f: f.cancelled() or f.exception())
@@ -167,7 +167,7 @@ class FitWorkers:
                 try:
                     future.result()
                 except BrokenProcessPool:
-                    slot.kill()
+                    slot.end()
                     if stop_at is None:
                         log.warning("fit worker died during job %s", job_id)
                         store.finish(job_id, "error", error="the fit's worker process died "
@@ -180,11 +180,13 @@ class FitWorkers:
                 store.request_cancel(job_id)
                 stop_at = now + GRACE_S
             if stop_at is not None and now >= stop_at:
-                slot.kill()  # did not reach a checkpoint in time: end its process
+                slot.end()  # did not reach a checkpoint in time: end its process
                 store.finish(job_id, "cancelled")
                 return
-            if now - started > self.timeout_s:
-                slot.kill()
+            if begun is None and store.running(job_id):
+                begun = now
+            if now - (submitted + START_S if begun is None else begun) > self.timeout_s:
+                slot.end()
                 store.finish(job_id, "error", error=f"the fit took longer than "
                                                     f"{self.timeout_s:g} s and was stopped")
                 return
@@ -192,5 +194,5 @@ class FitWorkers:
     def shutdown(self) -> None:
         for task in self._tasks:
             task.cancel()
-        for slot in self._slots:
-            slot.kill()
+        for worker in (*self._slots, self._reader):
+            worker.end()

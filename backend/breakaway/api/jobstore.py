@@ -119,6 +119,12 @@ class JobStore:
             row = db.execute("SELECT cancel FROM jobs WHERE id = ?", (job_id,)).fetchone()
         return bool(row and row[0])
 
+    def running(self, job_id: str) -> bool:
+        """Whether the job's worker has begun it (written its first progress)."""
+        with closing(self._connect()) as db:
+            row = db.execute("SELECT status FROM jobs WHERE id = ?", (job_id,)).fetchone()
+        return bool(row and row[0] == "running")
+
     def abandon_orphans(self) -> int:
         """Jobs left queued or running by a server process that is gone (a restart, a
         crash) end as errors, so no page polls them forever."""

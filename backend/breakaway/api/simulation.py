@@ -11,13 +11,11 @@ from __future__ import annotations
 
 import asyncio
 import logging
-import multiprocessing
-import os
-import threading
-import time
-from concurrent.futures import Future, ProcessPoolExecutor
+from concurrent.futures import Future
 from concurrent.futures.process import BrokenProcessPool
 from typing import Any, Awaitable, Callable
+
+from .processes import WorkerProcess
 
 log = logging.getLogger("breakaway.api")
 
@@ -79,18 +77,6 @@ def _nullable(values) -> list[float | None]:
     return [float(v) if v == v and abs(v) != float("inf") else None for v in values]
 
 
-def _exit_with_parent(parent: int) -> None:
-    """Worker initializer: end this worker when the server that started it is gone
-    (killed without its shutdown running), instead of lingering as an orphan."""
-
-    def watch() -> None:
-        while os.getppid() == parent:
-            time.sleep(1.0)
-        os._exit(0)
-
-    threading.Thread(target=watch, name="exit-with-parent", daemon=True).start()
-
-
 def _warm_up() -> bool:
     """Load the compiled integrator and both loop models in the worker (numba's disk
     cache: ~0.3 s; the first request would otherwise pay it)."""
@@ -112,23 +98,22 @@ class SimulationRunner:
     at most ``queue`` requests wait for it (more are refused at once, 503)."""
 
     def __init__(self, queue: int = 16) -> None:
-        self._pool: ProcessPoolExecutor | None = None
-        self._lock = threading.Lock()  # guards _pool
+        self._worker = WorkerProcess()
+        self._closed = False  # after shutdown no worker is started again
         self._turn: asyncio.Lock | None = None  # one run at a time (made on the loop)
         self._queue = queue
         self._waiting = 0
 
-    def _executor(self) -> ProcessPoolExecutor:
-        with self._lock:
-            if self._pool is None:
-                context = multiprocessing.get_context("spawn")
-                self._pool = ProcessPoolExecutor(max_workers=1, mp_context=context,
-                                                 initializer=_exit_with_parent,
-                                                 initargs=(os.getpid(),))
-            return self._pool
+    def _submit(self, fn: Callable[..., Any], *args: Any) -> Future:
+        if self._closed:
+            raise SimulatorBusy("the server is shutting down")
+        return self._worker.submit(fn, *args)
 
-    def warm_up(self) -> Future:
-        return self._executor().submit(_warm_up)
+    def start(self) -> Future:
+        """Take runs (again, after a shutdown: an app's lifespan may run more than once)
+        and start the worker now, warmed up."""
+        self._closed = False
+        return self._worker.warm_up(_warm_up)
 
     async def run(self, timeout: float, *args: Any, target=run_simulation,
                   wait: float | None = None,
@@ -155,7 +140,7 @@ class SimulationRunner:
         try:
             for attempt in (1, 2):
                 try:
-                    future = asyncio.wrap_future(self._executor().submit(target, *args))
+                    future = asyncio.wrap_future(self._submit(target, *args))
                     return await self._wait(future, timeout, gone)
                 except BrokenProcessPool:
                     log.warning("simulation worker died (attempt %d); starting a new one",
@@ -171,33 +156,33 @@ class SimulationRunner:
         loop = asyncio.get_running_loop()
         deadline = loop.time() + timeout  # from the start of the run, not of the wait
         left_at = None
-        while True:
-            done, _ = await asyncio.wait({future}, timeout=_POLL_S)
-            if done:
-                return future.result()
-            now = loop.time()
-            if now >= deadline:
-                self._restart()  # only this request's run is in the worker
-                raise SimulationTimeout(f"the simulation took longer than {timeout:g} s")
-            if left_at is None and gone is not None and await gone():
-                left_at = now
-            if left_at is not None and now - left_at >= _GRACE_S:
-                self._restart()
-                raise ClientGone
+        try:
+            while True:
+                done, _ = await asyncio.wait({future}, timeout=_POLL_S)
+                if done:
+                    return future.result()
+                now = loop.time()
+                if now >= deadline:
+                    self._restart()  # only this request's run is in the worker
+                    raise SimulationTimeout(f"the simulation took longer than {timeout:g} s")
+                if left_at is None and gone is not None and await gone():
+                    left_at = now
+                if left_at is not None and now - left_at >= _GRACE_S:
+                    self._restart()
+                    raise ClientGone
+        finally:
+            # a run left behind (timeout, client gone, this request cancelled) fails
+            # with BrokenProcessPool once its worker is ended; nobody would read that,
+            # and asyncio would log it as never retrieved: its result is renounced here
+            future.cancel()
 
     def _restart(self) -> None:
         """End the worker that is stuck in a long run; the next request starts a new one."""
-        self.shutdown()
+        self._worker.end()
 
     def shutdown(self) -> None:
-        """End the worker now: it holds no state, and a running simulation is abandoned."""
-        with self._lock:
-            pool, self._pool = self._pool, None
-        if pool is None:
-            return
-        processes = list((getattr(pool, "_processes", None) or {}).values())
-        for process in processes:
-            process.kill()
-        pool.shutdown(wait=False, cancel_futures=True)
-        for process in processes:
-            process.join(timeout=5)
+        """End the worker now (it holds no state; a running simulation is abandoned) and
+        start none again."""
+        self._closed = True
+        self._worker.end()
+

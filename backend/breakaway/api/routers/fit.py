@@ -4,10 +4,9 @@ from __future__ import annotations
 
 import orjson
 from fastapi import APIRouter, File, Form, HTTPException, Request, UploadFile
-from fastapi.concurrency import run_in_threadpool
 from fastapi.responses import Response
 
-from ...identify import DataError, parse_csv
+from ...identify import DataError
 from ...settings import get_settings
 from ..errors import too_large, unprocessable
 from ..fit_schemas import FitJobStatus, FitReport
@@ -36,10 +35,10 @@ async def _read_upload(file: UploadFile) -> bytes:
     return data
 
 
-async def _parse(file: UploadFile, kind: str | None):
+async def _parse(request: Request, file: UploadFile, kind: str | None):
     data = await _read_upload(file)
-    return await run_in_threadpool(parse_csv, data, kind or None,
-                                   get_settings().max_upload_bytes)
+    return await request.app.state.fit_workers.read(data, kind or None,
+                                                    get_settings().max_upload_bytes)
 
 
 #: Seconds a client is asked to wait when every fit worker and the queue are taken.
@@ -77,7 +76,7 @@ async def fit(request: Request,
     """
     _refuse_when_full(request)
     try:
-        dataset = await _parse(file, kind)
+        dataset = await _parse(request, file, kind)
     except _TooLarge:
         return too_large(get_settings().max_upload_bytes, upload=True)
     except DataError as err:
@@ -98,7 +97,7 @@ async def start_fit(request: Request, file: UploadFile = File(...),
     """Start a fit in the background; poll ``GET /api/fit/jobs/{id}`` for progress."""
     _refuse_when_full(request)
     try:
-        dataset = await _parse(file, kind)
+        dataset = await _parse(request, file, kind)
     except _TooLarge:
         return too_large(get_settings().max_upload_bytes, upload=True)
     except DataError as err:
