@@ -4,15 +4,23 @@ Prints each figure next to the obvious alternative measured in the same run:
 numpy.genfromtxt for parsing, and the same diagnosis with BLAS left multi-threaded
 (what you get without threadpoolctl).
 
-Run: .venv/bin/python benchmarks/bench_identify.py
+Run: .venv/bin/python benchmarks/bench_identify.py [--against REV]
+With ``--against REV`` (default: the engine at the start of this round's identification
+work) a 10,000-row record is also fitted by that revision's engine, checked out into a
+temporary git worktree and run in a subprocess on the same file in the same run: the
+engine may take at most twice that time.
 The table goes to docs/benchmarks/results/identify.md, which the documentation includes.
 """
 
 from __future__ import annotations
 
+import argparse
 import io
+import os
 import statistics
+import subprocess
 import sys
+import tempfile
 import time
 from pathlib import Path
 
@@ -20,6 +28,7 @@ import numpy as np
 from threadpoolctl import threadpool_limits
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+ROOT = Path(__file__).resolve().parents[1]
 from results import Results, machine  # noqa: E402
 
 from breakaway.identify import diagnose, parse_csv  # noqa: E402
@@ -36,7 +45,61 @@ def _time(fn, repeat=3):
     return statistics.median(times)
 
 
-def main() -> None:
+#: The engine before the selection of held-out blocks (issue 26's start).
+BASELINE_REV = "94dd059"
+#: The fit whose time is compared with the baseline's.
+COMPARED_ROWS = 10_000
+_TIMED_FIT = """
+import statistics, sys, time
+sys.path.insert(0, sys.argv[1])
+from breakaway.identify import diagnose, parse_csv
+text = open(sys.argv[2], "rb").read()
+times = []
+for _ in range(3):
+    t0 = time.perf_counter()
+    diagnose(parse_csv(text))
+    times.append(time.perf_counter() - t0)
+print(statistics.median(times))
+"""
+
+
+def timed_fit(backend: Path, csv: Path) -> float:
+    """Median seconds of three fits + diagnoses of ``csv`` by the engine in ``backend``
+    (a fresh interpreter: nothing of the other engine is imported)."""
+    env = {**os.environ, "NUMBA_CACHE_DIR": str(csv.parent / f"numba-{backend.parent.name}")}
+    done = subprocess.run([sys.executable, "-c", _TIMED_FIT, str(backend), str(csv)],
+                          capture_output=True, text=True, env=env, check=True)
+    return float(done.stdout.strip().splitlines()[-1])
+
+
+def against(rev: str) -> tuple[float, float, int]:
+    """This engine's and ``rev``'s times on the same 10,000-row record [s], and its rows."""
+    data, _ = make_dataset("timeseries", ("viscous", "asymmetry"), seed=1, n=COMPARED_ROWS)
+    with tempfile.TemporaryDirectory() as tmp:
+        tmp = Path(tmp)
+        csv = tmp / "record.csv"
+        csv.write_text(to_csv(data))
+        old = tmp / "baseline"
+        subprocess.run(["git", "-C", str(ROOT), "worktree", "add", "--detach", "-q", str(old),
+                        rev], check=True)
+        try:
+            for backend in (old / "backend", ROOT / "backend"):
+                timed_fit(backend, csv)  # each engine's compiled functions cached once
+            theirs = timed_fit(old / "backend", csv)
+            ours = timed_fit(ROOT / "backend", csv)
+        finally:
+            subprocess.run(["git", "-C", str(ROOT), "worktree", "remove", "--force", str(old)],
+                           check=False)
+    return ours, theirs, data.n
+
+
+def main(argv=None) -> None:
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--against", default=BASELINE_REV, metavar="REV",
+                        help="git revision whose engine the 10,000-row fit is compared with "
+                             "('' to skip)")
+    args = parser.parse_args(argv)
     out = Results("identify", __file__)
     print(f"machine: {machine()}")
     data, _ = make_dataset("timeseries", (), seed=0, n=20_000)
@@ -73,6 +136,13 @@ def main() -> None:
                "with threaded BLAS (one run)", "effects found"], rows)
     out.note(f"A 20,000-row CSV parses in {ours * 1e3:.1f} ms (`numpy.genfromtxt`: "
              f"{theirs * 1e3:.1f} ms).")
+    if args.against:
+        now, before, n = against(args.against)
+        verdict = "within" if now <= 2 * before else "MORE than"
+        out.note(f"A {n:,}-row record (viscous friction and an asymmetry) fits and is "
+                 f"diagnosed in {now:.2f} s; the engine of revision {args.against} took "
+                 f"{before:.2f} s on the same file in the same run ({now / before:.2f}×, "
+                 f"{verdict} the 2× allowed).")
     out.write()
 
 
