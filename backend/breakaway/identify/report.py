@@ -39,7 +39,7 @@ def parameter_units(data, names, effects=()) -> dict[str, str]:
 def report(diagnosis: Diagnosis) -> dict:
     """The identification report as a JSON-ready dict.
 
-    Besides the §8 keys: each step's held-out error ``heldout``; ``units`` (of the
+    Besides the documented keys: each step's held-out error ``heldout``; ``units`` (of the
     columns and of every parameter, linear or rotary); ``noise_method`` (how the floor
     was estimated); ``screened_rows`` (rows of the blocks the candidates were screened
     on, 0 when every row was used) and ``seconds`` (wall time); what an export of the

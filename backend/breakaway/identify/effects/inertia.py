@@ -1,4 +1,4 @@
-"""``inertia``: an inertial force m_e·a in the measured force (MODEL.md §7)."""
+"""``inertia``: an inertial force m_e·a in the measured force."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""``ripple``: position-dependent friction A·sin(2πx/λ + φ) (MODEL.md §7)."""
+"""``ripple``: position-dependent friction A·sin(2πx/λ + φ)."""
 
 from __future__ import annotations
 
@@ -16,7 +16,7 @@ class Ripple(Effect):
     kinds = ("timeseries",)
     off = {"A": 0.0}
     params = (Param("A", "N", lambda sc: (0.0, 10 * sc.force)),
-              # the travel must hold two wavelengths (MODEL.md §8 short-travel)
+              # the travel must hold two wavelengths (else the short-travel warning)
               Param("wavelength", "m",
                     lambda sc: (2 * sc.step, sc.travel / MIN_RIPPLE_PERIODS), log=True),
               Param("phase", "rad", lambda sc: (-4 * math.pi, 4 * math.pi), relative=False))
@@ -34,7 +34,7 @@ class Ripple(Effect):
 
     def unresolved(self, pb, params):
         """Friction locked to position repeats wherever the body is: a ripple must be
-        the stick-slip cycle's travel nowhere (MODEL.md §8 ``stick-slip``) and hold its
+        the stick-slip cycle's travel nowhere and hold its
         wavelength and phase in both halves of the travel."""
         lam = params["wavelength"]
         cycle = pb.stick_slip

@@ -1,4 +1,4 @@
-"""``viscous-power``: σ·sgn(v)·|v|ⁿ in place of σ·v (MODEL.md §7): friction that rises
+"""``viscous-power``: σ·sgn(v)·|v|ⁿ in place of σ·v: friction that rises
 with speed along a curve (a lubricated gear, a seal; n = 2 is quadratic drag)."""
 
 from __future__ import annotations
@@ -8,7 +8,7 @@ import numpy as np
 from ..residuals import correlation
 from .base import Effect, Param, sliding_unseen, _project
 
-#: The range of the exponent n (MODEL.md §7).
+#: The range of the exponent n.
 EXPONENT_BOUNDS = (0.2, 3.0)
 #: A Coulomb level below this share of the force scale has been taken by the curve.
 LEVEL_TAKEN = 1e-6

@@ -1,4 +1,4 @@
-"""(E6') along a measured x(t) (MODEL.md §6 ``timeseries``)."""
+"""(E6') along a measured x(t)."""
 
 from __future__ import annotations
 
@@ -39,7 +39,7 @@ NOISY_X_WINDOW = 21
 
 
 class TimeseriesProblem(Problem):
-    """(E6') along the measured x(t) (MODEL.md §6 ``timeseries``)."""
+    """(E6') along the measured x(t)."""
 
     kind = "timeseries"
     base_names = ("Fc", "Fs", "V", "delta", "s")
@@ -68,7 +68,7 @@ class TimeseriesProblem(Problem):
         self.noise_x = position_noise(self.recorded_x) if self.quantum_x == 0 else 0.0
         self.resolution_x = max(self.quantum_x, self.noise_x)
         self.hysteresis = REVERSAL_STEPS * self.resolution_x
-        #: v and a, and how they were taken (MODEL.md §7 ``derivatives``)
+        #: v and a, and how they were taken
         self.x = self.model_positions(self.recorded_x)
         self.derivatives = derivatives(self.t, self.recorded_x, self.quantum_x, self.noise_x,
                                        self.blocks)
