@@ -106,6 +106,9 @@ class Effect:
     #: allowance for a dependence on that variable, but must show its own form
     #: (:meth:`unresolved`) instead (:mod:`breakaway.identify.allowance`)
     acts_through: str | None = None
+    #: whether the effect's force reads the acceleration taken from x (its resolution
+    #: then reaches the prediction twice differentiated)
+    reads_acceleration: bool = False
 
     @property
     def keys(self) -> tuple[str, ...]:

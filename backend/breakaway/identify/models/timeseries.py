@@ -9,7 +9,7 @@ from scipy.ndimage import uniform_filter1d
 
 from ...presliding import _presliding_kernel
 from ...steady import stribeck_kernel
-from ..derivatives import block_velocity, derivatives, positions, smooth_fit
+from ..derivatives import WINDOWS, block_velocity, derivatives, local_fit, positions, smooth_fit
 from ..effects import engaged_presliding
 from ..kinematics import REVERSAL_STEPS, direction, position_noise, quantum
 from ..stickslip import find_stick_slip
@@ -102,6 +102,17 @@ class TimeseriesProblem(Problem):
         dithered by its resolution), taken as the record's own v is."""
         return block_velocity(self.t, x, self.resolution_x, self.blocks)
 
+    def kinematic_acceleration(self, x):
+        """a of another position record of the same samples, taken as the record's own
+        a is (the same window, block by block)."""
+        if self.derivatives.method == "gradient":
+            return np.concatenate([np.gradient(np.gradient(x[a:b], self.t[a:b]), self.t[a:b])
+                                   for a, b in self.blocks])
+        window = self.derivatives.window
+        v = self.kinematic_velocity(x)
+        return np.concatenate([local_fit(self.t[a:b], x[a:b], window)[1] if b - a >= WINDOWS[0]
+                               else np.gradient(v[a:b], self.t[a:b]) for a, b in self.blocks])
+
     def kinematic_direction(self, x, hysteresis=None):
         """Directions of a position record of the same samples, with this record's
         reversal hysteresis unless another is given."""
@@ -137,6 +148,8 @@ class TimeseriesProblem(Problem):
         if dither is not None:
             ctx["x"] = self.x + dither
             ctx["v"] = self.kinematic_velocity(ctx["x"])
+            if any(effect.reads_acceleration for effect in self.effect_objects):
+                ctx["a"] = self.kinematic_acceleration(ctx["x"])
         if directions is not None:
             ctx["d"] = directions
         for effect in self.effect_objects:
