@@ -60,7 +60,11 @@ def test_a_stand_in_for_an_unknown_is_refused_and_a_true_effect_is_not():
     base = fit_model(data)
     curve = fit_with_effect(data, base, "viscous-power")
     assert curve.bic < base.bic - 10  # it would pass on the BIC alone
-    assert Judge(data, NOISE["timeseries"]).judge(base, curve).reason
+    # a flat σ·|v|^n imitates the transient by taking the Coulomb level
+    assert curve.params["n"] < 0.5 and curve.params["Fc"] < 0.01 * base.params["Fc"]
+    result = report(diagnose(data))
+    assert "viscous-power" not in result["effects"]
+    assert "takes the Coulomb level" in result["candidates"]["viscous-power"]["reason"]
     # a true effect is accepted
     true_data, truth = make_dataset("timeseries", ("viscous-power",), seed=11, n=10_000)
     true_base = fit_model(true_data)

@@ -1,5 +1,5 @@
 """Identification: fit measured data, trace the residual to the effect the model lacks,
-add it, and report the error before and after (MODEL.md §6–§8).
+add it, and report the error before and after.
 
 >>> from breakaway.identify import read_csv, identify
 >>> report = identify(read_csv("run.csv"))          # doctest: +SKIP
@@ -15,7 +15,7 @@ from .report import report
 
 
 def identify(data: Dataset, progress=None) -> dict:
-    """The §8 report of ``data`` (see :func:`breakaway.identify.diagnosis.diagnose`)."""
+    """The identification report of ``data`` (see :func:`breakaway.identify.diagnosis.diagnose`)."""
     return report(diagnose(data, progress))
 
 

@@ -1,9 +1,9 @@
-"""Velocity and acceleration of a position record (MODEL.md §7 ``derivatives``).
+"""Velocity and acceleration of a position record.
 
 Every kind and effect that needs v or a takes them from here.
 
 - Exact x (synthetic, unquantised, noise-free): ``numpy.gradient`` for v and again for
-  a, so that the round trips of MODEL.md §3 stay exact.
+  a, so that the round trips of the presliding model stay exact.
 - Measured x (an encoder's steps, or noise in x) is never differenced twice: one count
   over two samples at 1 kHz would be an acceleration of 10⁶ counts/s². Both come from
   local polynomial fits of x over windows the data choose:
@@ -130,7 +130,7 @@ def _adaptive_position(t, x, span, min_half, max_half):
 
 
 def positions(t, x, resolution: float = 0.0):
-    """The positions a model runs on [m]: x itself when it is exact (MODEL.md §3); for
+    """The positions a model runs on [m]: x itself when it is exact; for
     an encoder's steps or a noisy x, each sample's value of a least-squares quadratic in
     t over the narrowest centred window (at least 5 samples) over which x spans
     :data:`POSITION_RESOLUTIONS` resolutions. A count holds its error while the body
@@ -148,7 +148,7 @@ def positions(t, x, resolution: float = 0.0):
 def velocity(t, x, resolution: float = 0.0):
     """Velocity of a position record [m/s].
 
-    ``gradient(x, t)`` (MODEL.md §3) when x is exact (``resolution = 0``). For an
+    ``gradient(x, t)`` when x is exact (``resolution = 0``). For an
     encoder's steps or a noisy x, each sample's velocity is the slope over the
     narrowest centred window over which x spans at least
     :data:`WINDOW_RESOLUTIONS` resolutions (at most :data:`MAX_HALF_WINDOW` samples on
@@ -206,7 +206,7 @@ class Derivatives:
             math.sqrt(float(np.mean(self.a**2))) >= RESOLVED_RATIO * noise
 
     def entry(self) -> dict:
-        """The report's ``derivatives`` object (MODEL.md §8), with how v was taken."""
+        """The report's ``derivatives`` object, with how v was taken."""
         velocity_text = ("numpy.gradient" if self.method == "gradient" else
                          f"local slope over the narrowest window over which x spans "
                          f"{WINDOW_RESOLUTIONS} resolutions")

@@ -1,4 +1,4 @@
-"""The residual → effect loop (MODEL.md §7, §8).
+"""The residual → effect loop.
 
 1. Prepare the data (rows the model cannot use are dropped, :mod:`.preparation`), fit
    the base model, and estimate the noise floor without any model (:mod:`.noise`).

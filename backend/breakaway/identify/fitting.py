@@ -32,7 +32,7 @@ class FitResult:
     effects : tuple of str
     params : dict
         Fitted values keyed as in the report (``Fc``, ``Fs``, ``V``, ``delta``, ``s``,
-        §7 keys), the input of :meth:`Problem.predict`.
+        effects' keys), the input of :meth:`Problem.predict`.
     stderr : dict
         Standard errors from the Jacobian (delta method through the transforms);
         None where the data give none (:mod:`breakaway.identify.identifiability`).
@@ -170,7 +170,7 @@ def fit_model(data: Dataset, effects=(), starts=None, rows=None, max_nfev=None,
     data : Dataset
         Parsed measurement.
     effects : sequence of str, optional
-        Effects of §7 added to the base model.
+        Effects of the library added to the base model.
     starts : list of dict, optional
         Starting parameter sets (full dictionaries). By default a grid derived from the
         data (:func:`base_starts`), which needs ``effects`` to be empty.
@@ -243,7 +243,7 @@ def fit_model(data: Dataset, effects=(), starts=None, rows=None, max_nfev=None,
 KEEP_JACOBIAN_ROWS = 200_000
 
 
-#: Each Stribeck level with its Coulomb level (MODEL.md §8: Fc when Fs = Fc).
+#: Each Stribeck level with its Coulomb level (Fc when Fs = Fc).
 LEVEL_PAIRS = (("Fc", "Fs"), ("Fc_neg", "Fs_neg"))
 
 
@@ -257,7 +257,7 @@ def smooth_order(problem: Problem, rows) -> np.ndarray:
 
 def _levels_without_drop(problem: Problem, params: dict, rows, assessment: Assessment,
                          order=None):
-    """MODEL.md §8: when Fs ends on its bound Fs = Fc (no Stribeck drop in the data), Fc
+    """When Fs ends on its bound Fs = Fc (no Stribeck drop in the data), Fc
     is still a result: its standard error (and whether it is determined) comes from
     the model without the drop, Fc = Fs with V and δ held, where V and δ describe
     nothing. The same for the negative direction's levels."""

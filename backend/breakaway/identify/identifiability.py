@@ -1,4 +1,4 @@
-"""What a fit determines (MODEL.md §8): standard errors and ``determined`` flags.
+"""What a fit determines: standard errors and ``determined`` flags.
 
 A parameter is not determined when it sits on a bound of its range, when it moves along
 a flat direction of the fit (a near-zero singular value of the column-scaled Jacobian),

@@ -69,8 +69,11 @@ class Judge:
     def __init__(self, data, noise: float, weights=None):
         self.data = data
         self.noise = noise  # the noise floor [N]
-        #: each row's weight (:func:`.noise.input_weights`), or None for all equal
+        #: each row's weight under the base model (:func:`.noise.input_weights`), or
+        #: None for all equal
+        self.base_weights = weights
         self.weights = weights
+        self._weights: dict = {}
         self._blocks = None
         self._heldout: dict = {}
 
@@ -90,6 +93,7 @@ class Judge:
         """The verdict on ``trial`` (``current`` with one or two effects added); with
         ``heldout=False`` only the parts that need no refit (a screening)."""
         new = [e for e in trial.effects if e not in current.effects]
+        self.weights = self.weights_under(current)
         if not heldout:
             # a screening fit is short of its optimum: it is polished when its plain BIC
             # promises anything
@@ -169,6 +173,19 @@ class Judge:
                       f"the held-out error rises ({better} of {gain.size} blocks better)")
 
         return reason, h0, h1
+
+    def weights_under(self, current: FitResult):
+        """The rows' weights under ``current``'s model: the base model's, except where an
+        accepted effect reads x's derivatives itself (an inertia's m_e·a takes the
+        resolution of x twice differentiated), where they are taken again from it."""
+        if self.base_weights is None or not any(
+                EFFECTS[e].reads_acceleration for e in current.effects):
+            return self.base_weights
+        if id(current) not in self._weights:
+            errors = current.problem.resolution_errors(current.params)
+            floor = max(self.noise, 1e-12 * float(np.max(errors)))
+            self._weights[id(current)] = (current, floor**2 / (floor**2 + errors**2))
+        return self._weights[id(current)][1]
 
     def _weighted(self, r) -> float:
         """The squared error of residuals ``r``, rows weighted."""

@@ -1,11 +1,11 @@
 """Kinematics of a measured position record that may be quantised (an encoder).
 
-MODEL.md §3 takes x as exact and v = gradient(x, t). On an encoder record that turns
+The presliding model takes x as exact and v = gradient(x, t). On an encoder record that turns
 one count of jitter at rest into a reversal and a velocity spike. So:
 
 - :func:`quantum` detects the step ``q`` of a column (0 when it takes no fixed steps);
 - :func:`direction` treats a direction change smaller than ``h`` as no reversal (a
-  Schmitt trigger on the running extreme); with ``h = 0`` it *is* MODEL.md §3's rule;
+  Schmitt trigger on the running extreme); with ``h = 0`` it *is* the model's own rule;
 - :func:`position_noise` estimates the noise of x, where there is any to speak of;
 - v and a are taken in :mod:`.derivatives`.
 """
@@ -181,7 +181,7 @@ def direction(x, h: float = 0.0):
     x : array_like
         Positions [m].
     h : float, optional
-        Hysteresis [m]; 0 gives exactly MODEL.md §3's rule
+        Hysteresis [m]; 0 gives exactly the model's own rule
         (:func:`breakaway.presliding.motion_direction`).
 
     Returns

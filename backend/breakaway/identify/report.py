@@ -67,7 +67,7 @@ def parameter_units(data, names, effects=()) -> dict[str, str]:
 def report(diagnosis: Diagnosis) -> dict:
     """The identification report as a JSON-ready dict.
 
-    Besides the §8 keys: each step's held-out error ``heldout``; ``units`` (of the
+    Besides the documented keys: each step's held-out error ``heldout``; ``units`` (of the
     columns and of every parameter, linear or rotary); ``correlated`` (of the base and
     the final model: the parameters not determined only through a correlation, and the
     combination the data determine, :func:`correlated`); ``noise_method`` (how the floor

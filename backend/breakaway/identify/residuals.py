@@ -102,7 +102,7 @@ def lag_one_correlation(residual, problem) -> float:
 
 
 def residual_structure(residual, problem, white: bool) -> list[dict]:
-    """MODEL.md §8 ``residual_structure``: per variable of the kind, the share of the
+    """The report's ``residual_structure``: per variable of the kind, the share of the
     residual's variance a smooth function of it explains, largest first; empty when
     the residual is white."""
     if white:

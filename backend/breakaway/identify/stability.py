@@ -14,7 +14,7 @@ about the effect. Inside one half of a
 constant-acceleration run m_e·a is a constant like Fc, and the half gives m_e whatever
 value its Fc leaves. Where both halves determine a parameter, their values agree within
 :data:`RELATIVE_AGREEMENT` of the larger or within :data:`AGREEMENT_SIGMAS` combined
-standard errors (an angle within :data:`PHASE_AGREEMENT`).
+standard errors (an angle within :data:`PHASE_AGREEMENT`, read at the middle of the travel).
 
 Steady and break-away files are sets of separate measurements, not a record in time;
 the check is for time series.
@@ -50,9 +50,15 @@ def _half_fits(data: Dataset, fit: FitResult, halves: list[np.ndarray]):
                       max_nfev=HALF_EVALUATIONS, **family(fit)) for rows in halves]
 
 
-def _agree(name, spec, a: FitResult, b: FitResult) -> bool:
+def _agree(name, spec, a: FitResult, b: FitResult, centre: float = 0.0) -> bool:
     p1, p2 = a.params[name], b.params[name]
     if not spec.relative:
+        if "wavelength" in a.params:
+            # a phase is read where the record travels, not at x = 0: far from the origin
+            # a wavelength that differs in its third digit turns the phase at x = 0 by
+            # whole radians while the two ripples lie on each other over the data
+            p1 += 2 * math.pi * centre / a.params["wavelength"]
+            p2 += 2 * math.pi * centre / b.params["wavelength"]
         return abs(math.remainder(p1 - p2, 2 * math.pi)) <= PHASE_AGREEMENT
     gap = abs(p1 - p2)
     return gap <= max(RELATIVE_AGREEMENT * max(abs(p1), abs(p2)),
@@ -84,7 +90,8 @@ def unstable(data: Dataset, fit: FitResult, effect: str) -> str | None:
     for name in EFFECTS[effect].keys:
         if not (_holds(first, name) and _holds(second, name)):
             continue  # only what both halves determine votes
-        if not _agree(name, fit.problem.spec(name), first, second):
+        centre = float(np.mean(data.columns["x"]))
+        if not _agree(name, fit.problem.spec(name), first, second, centre):
             return (f"a stand-in for something outside the library: {name} takes "
                     f"{first.params[name]:.4g} in the first half of the record and "
                     f"{second.params[name]:.4g} in the second")

@@ -1,4 +1,4 @@
-"""Stick-slip in a time series (MODEL.md §8 ``stick-slip``).
+"""Stick-slip in a time series.
 
 A drive pulls the body through something elastic (a spring, a belt, a compliant
 joint); with friction that falls with speed the body sticks while the load builds up,

@@ -1,4 +1,4 @@
-"""Seeded synthetic measurements of every kind, with any §7 effects, for tests,
+"""Seeded synthetic measurements of every kind, with any of the library's effects, for tests,
 benchmarks and the explorer's "mystery" samples.
 
 The data come from the same forward model the engine fits (:class:`Problem`), plus
@@ -138,7 +138,7 @@ def make_dataset(kind: str, effects=(), seed: int = 0, noise: float | None = Non
     ----------
     kind : {'timeseries', 'steady', 'breakaway'}
     effects : sequence of str
-        §7 effects to include in the data.
+        library effects to include in the data.
     seed : int
         Seed of the excitation and the noise.
     noise : float, optional
@@ -178,7 +178,7 @@ def make_filtered_channel(seed: int = 0, n: int | None = None, delay: float = 0.
                           time_constant: float = 0.02, noise: float | None = None) -> Dataset:
     """Base-model timeseries seen through a delayed, low-pass filtered force channel.
 
-    An effect outside the §7 library (a sensor's dynamics): the force is delayed by
+    An effect outside the effect library (a sensor's dynamics): the force is delayed by
     ``delay`` [s] and passed through a first-order low-pass of ``time_constant`` [s]
     before the noise is added.
     """
@@ -202,7 +202,7 @@ def with_force(dataset: Dataset, force) -> Dataset:
 
 
 def to_csv(dataset: Dataset, comment: str | None = None) -> str:
-    """CSV text (MODEL.md §6) of a dataset, metadata lines first."""
+    """CSV text of a dataset, metadata lines first."""
     out = io.StringIO()
     if comment:
         out.write(f"# {comment}\n")

@@ -31,7 +31,7 @@ def _force(report) -> str:
 
 
 def format_report(report: dict, source: str | None = None) -> str:
-    """A plain-text rendering of a §8 report."""
+    """A plain-text rendering of an identification report."""
     N = _force(report)
     units = report.get("units", {})
     lines = []

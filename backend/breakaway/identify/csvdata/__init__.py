@@ -1,4 +1,4 @@
-"""Measured-data CSV files of the identification engine (MODEL.md §6).
+"""Measured-data CSV files of the identification engine.
 
 A file is UTF-8 text, comma separated. Lines starting with ``#`` before the header carry
 metadata as ``# key: value`` (a ``#`` line without ``:`` is a plain comment); the first
@@ -55,7 +55,7 @@ __all__ = [
 
 
 def parse_csv(data: bytes | str, kind: str | None = None, max_bytes: int = DEFAULT_MAX_BYTES) -> Dataset:
-    """Parse and validate a measured-data CSV file (MODEL.md §6).
+    """Parse and validate a measured-data CSV file.
 
     Parameters
     ----------
@@ -78,7 +78,7 @@ def parse_csv(data: bytes | str, kind: str | None = None, max_bytes: int = DEFAU
     ------
     DataError
         For any problem with the input: size, encoding, missing/unknown/duplicate columns,
-        wrong number of cells, non-numeric cells, NaN/Inf, values outside MODEL.md §1/§7
+        wrong number of cells, non-numeric cells, NaN/Inf, values outside the parameters' ranges
         (``k > 0``, ``F_ba >= 0``, ``dwell >= 0``, ``direction = ±1``), non-increasing
         ``t``, fewer than :data:`MIN_ROWS` rows. The message names line and column.
     """
@@ -198,7 +198,7 @@ def parse_csv(data: bytes | str, kind: str | None = None, max_bytes: int = DEFAU
 
 
 def _validate_meta(dataset: Dataset) -> None:
-    """The metadata the model reads (MODEL.md §6): ``# s:`` > 0 and ``# F0:`` finite,
+    """The metadata the model reads: ``# s:`` > 0 and ``# F0:`` finite,
     both within :data:`MAGNITUDE`; checked here so a bad file is refused on upload, not
     when its fit starts. Other keys (``source``, ``units``, …) are free text."""
     s = dataset.meta_float("s")

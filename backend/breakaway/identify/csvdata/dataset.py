@@ -9,15 +9,15 @@ import numpy as np
 
 
 
-#: The kinds of measured data (MODEL.md §6).
+#: The kinds of measured data.
 KINDS = ("timeseries", "steady", "breakaway")
-#: Required columns per kind, in the order of MODEL.md §6.
+#: Required columns per kind, in the documented order.
 REQUIRED = {"timeseries": ("t", "x", "F"), "steady": ("v", "F"), "breakaway": ("k", "F_ba")}
 #: Optional columns per kind that are read (and validated) when present.
 OPTIONAL = {"timeseries": ("v",), "steady": (), "breakaway": ("dwell", "direction")}
 #: Fewest data rows accepted.
 MIN_ROWS = 10
-#: Default upper limit on the size of a file [bytes] (20 MB, MODEL.md §6).
+#: Default upper limit on the size of a file [bytes] (20 MB).
 DEFAULT_MAX_BYTES = 20 * 1024 * 1024
 
 _EXPECTED = "expected t,x,F (timeseries), v,F (steady) or k,F_ba (breakaway)"

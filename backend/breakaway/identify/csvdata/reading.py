@@ -1,5 +1,5 @@
 """Reading a measured-data file: bytes to lines, metadata and header, cells to
-columns, and each column's values checked (MODEL.md §6)."""
+columns, and each column's values checked."""
 
 from __future__ import annotations
 
@@ -96,7 +96,7 @@ def _normalise_kind(kind: str, line: int | None, source: str) -> str:
 
 def _detect_kind(header: list[str], header_line: int) -> str:
     present = set(header)
-    for kind in ("timeseries", "breakaway", "steady"):  # priority of MODEL.md §6 / the brief
+    for kind in ("timeseries", "breakaway", "steady"):  # the documented priority
         if set(REQUIRED[kind]) <= present:
             return kind
     names = [h for h in header if h]
@@ -203,7 +203,7 @@ def _read_meta_and_header(lines):
     raise DataError("the file is empty: expected a header line naming the columns")
 
 
-#: Units in a header cell that mark rotary data (MODEL.md §6 ``# units: rotary``).
+#: Units in a header cell that mark rotary data (as ``# units: rotary``).
 _ROTARY_UNITS = {"rad", "rad/s", "n·m", "nm", "n*m", "n.m", "n m", "n·m/s", "nm/s", "n*m/s"}
 
 
@@ -227,7 +227,7 @@ def _strip_units(header):
 
 # --------------------------------------------------------------------------- validation
 
-#: Per-column value rules of MODEL.md §1, §6, §7: (violation mask, what is required).
+#: Per-column value rules (the parameters' and the effects' ranges): (violation mask, what is required).
 _LOW, _HIGH = MAGNITUDE
 _VALUE_RULES = {
     "k": (lambda a: ~((a >= _LOW) & (a <= _HIGH)),

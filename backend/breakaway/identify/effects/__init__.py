@@ -1,4 +1,4 @@
-"""The effect library of MODEL.md §7: each effect is one object, in one module.
+"""The effect library: each effect is one object, in one module.
 
 An :class:`Effect` knows everything about itself that the fit, the diagnosis, the
 report, the text and the data panel need: its name and kinds, its parameters (units,

@@ -1,4 +1,4 @@
-"""``asymmetry``: separate levels in the negative direction (MODEL.md §7)."""
+"""``asymmetry``: separate levels in the negative direction."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""``backlash``: a play between the measured point and the sliding body (MODEL.md §7)."""
+"""``backlash``: a play between the measured point and the sliding body."""
 
 from __future__ import annotations
 
@@ -13,7 +13,7 @@ from .base import Effect, Param, _fmt
 
 @njit(cache=True)
 def play_operator(x, play):
-    """Body position behind a play of width ``play`` (MODEL.md §7 ``backlash``).
+    """Body position behind a play of width ``play``.
 
     ``x_c,i = min(max(x_c,i−1, x_i − b/2), x_i + b/2)``, ``x_c,0 = x_0``. Returns the
     body position and whether the body is engaged (at the edge of the play).
@@ -42,7 +42,7 @@ def play_operator(x, play):
 
 @njit(cache=True)
 def engaged_presliding(xc, d, target, s, F_r0, engaged):
-    """(E6') on the body position with the play's re-engagements (MODEL.md §7).
+    """(E6') on the body position with the play's re-engagements.
 
     Each re-engagement starts a branch with ``x_r = x_c,i−1`` and ``F_r = 0``; the
     measured force is the friction while engaged and 0 while free.

@@ -1,4 +1,4 @@
-"""The base of the effect library (MODEL.md §7): :class:`Param`, :class:`Effect`, the
+"""The base of the effect library: :class:`Param`, :class:`Effect`, the
 base model's parameters and the helpers the effects share."""
 
 from __future__ import annotations
@@ -10,7 +10,7 @@ from typing import Callable
 import numpy as np
 
 
-#: The break-away kind's fixed reading of E13 (MODEL.md §6): F̂ = avg at z* = 0.95.
+#: The break-away kind's fixed reading of E13: F̂ = avg at z* = 0.95.
 BREAKAWAY_Z = 0.95
 #: Bounds of the Stribeck exponent in fits (δ > 0, |δ| >= 0.05).
 DELTA_BOUNDS = (0.05, 10.0)
@@ -19,7 +19,7 @@ MIN_DIRECTION_SHARE = 0.05
 #: ... and at least this many rows.
 MIN_ROWS_PER_DIRECTION = 5
 #: Distinct rates break-away data need before rate effects (and the Stribeck shape) are
-#: determined (MODEL.md §8 ``single-rate``).
+#: determined (else the single-rate warning).
 MIN_RATES = 3
 #: The travel must hold this many wavelengths of a ripple.
 MIN_RIPPLE_PERIODS = 2.0
@@ -93,7 +93,7 @@ def _fmt(value) -> str:
 
 
 class Effect:
-    """One effect the base model lacks (MODEL.md §7); subclasses fill in the hooks."""
+    """One effect the base model lacks; subclasses fill in the hooks."""
 
     name: str = ""
     kinds: tuple[str, ...] = ()
@@ -106,6 +106,9 @@ class Effect:
     #: allowance for a dependence on that variable, but must show its own form
     #: (:meth:`unresolved`) instead (:mod:`breakaway.identify.allowance`)
     acts_through: str | None = None
+    #: whether the effect's force reads the acceleration taken from x (its resolution
+    #: then reaches the prediction twice differentiated)
+    reads_acceleration: bool = False
 
     @property
     def keys(self) -> tuple[str, ...]:

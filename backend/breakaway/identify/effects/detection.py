@@ -1,4 +1,4 @@
-"""``detection``: the rig notices break-away late while the force ramps (MODEL.md §7)."""
+"""``detection``: the rig notices break-away late while the force ramps."""
 
 from __future__ import annotations
 
@@ -30,6 +30,6 @@ class Detection(Effect):
 
 
 def viscous_equivalent_of_detection(tau_det, s, F_hat):
-    """σ that raises F_ba like a detection delay τ_det (MODEL.md §7):
+    """σ that raises F_ba like a detection delay τ_det:
     ``σ·ẋ* = k·τ_det`` with ``ẋ* = k/(s·F̂·|ln z*|)`` gives ``σ = τ_det·s·F̂·|ln z*|``."""
     return tau_det / float(e12_velocity(1.0, F_hat, s, BREAKAWAY_Z))

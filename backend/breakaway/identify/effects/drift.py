@@ -1,4 +1,4 @@
-"""``drift``: the friction level drifting in time (MODEL.md §7)."""
+"""``drift``: the friction level drifting in time."""
 
 from __future__ import annotations
 

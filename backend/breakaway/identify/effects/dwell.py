@@ -1,4 +1,4 @@
-"""``dwell``: stiction rising with the dwell time (MODEL.md §7)."""
+"""``dwell``: stiction rising with the dwell time."""
 
 from __future__ import annotations
 

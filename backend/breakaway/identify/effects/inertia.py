@@ -1,4 +1,4 @@
-"""``inertia``: an inertial force m_e·a in the measured force (MODEL.md §7)."""
+"""``inertia``: an inertial force m_e·a in the measured force."""
 
 from __future__ import annotations
 
@@ -11,6 +11,7 @@ from .base import BREAKAWAY_Z, Effect, Param, _needs_rates, _project
 
 class Inertia(Effect):
     name = "inertia"
+    reads_acceleration = True
     kinds = ("timeseries", "breakaway")
     off = {"m_e": 0.0}
     params = (Param("m_e", "kg", lambda sc: (0.0, 100 * sc.force / sc.accel)),)
@@ -35,7 +36,8 @@ class Inertia(Effect):
         return pb.a
 
     def sensor(self, pb, p, F, ctx):
-        return F + p["m_e"] * self._acceleration(pb, ctx.get("F_hat"))
+        a = ctx["a"] if "a" in ctx else self._acceleration(pb, ctx.get("F_hat"))
+        return F + p["m_e"] * a
 
     def starts(self, pb, current, r):
         F_hat = current["Fc"] + (current["Fs"] - current["Fc"]) / 2

@@ -1,4 +1,4 @@
-"""``lag``: frictional lag, g at a filtered velocity (MODEL.md §7)."""
+"""``lag``: frictional lag, g at a filtered velocity."""
 
 from __future__ import annotations
 

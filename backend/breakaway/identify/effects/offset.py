@@ -1,4 +1,4 @@
-"""``offset``: a constant bias of the force sensor (MODEL.md §7)."""
+"""``offset``: a constant bias of the force sensor."""
 
 from __future__ import annotations
 

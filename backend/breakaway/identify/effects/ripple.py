@@ -1,4 +1,4 @@
-"""``ripple``: position-dependent friction A·sin(2πx/λ + φ) (MODEL.md §7)."""
+"""``ripple``: position-dependent friction A·sin(2πx/λ + φ)."""
 
 from __future__ import annotations
 
@@ -16,7 +16,7 @@ class Ripple(Effect):
     kinds = ("timeseries",)
     off = {"A": 0.0}
     params = (Param("A", "N", lambda sc: (0.0, 10 * sc.force)),
-              # the travel must hold two wavelengths (MODEL.md §8 short-travel)
+              # the travel must hold two wavelengths (else the short-travel warning)
               Param("wavelength", "m",
                     lambda sc: (2 * sc.step, sc.travel / MIN_RIPPLE_PERIODS), log=True),
               Param("phase", "rad", lambda sc: (-4 * math.pi, 4 * math.pi), relative=False))
@@ -34,8 +34,9 @@ class Ripple(Effect):
 
     def unresolved(self, pb, params):
         """Friction locked to position repeats wherever the body is: a ripple must be
-        the stick-slip cycle's travel nowhere (MODEL.md §8 ``stick-slip``) and hold its
-        wavelength and phase in both halves of the travel."""
+        the stick-slip cycle's travel nowhere (nor shorter than twice it: the body rests
+        only that far apart) and hold its wavelength and phase in both halves of the
+        travel."""
         lam = params["wavelength"]
         cycle = pb.stick_slip
         if cycle is not None and cycle.matches(lam):
@@ -43,6 +44,13 @@ class Ripple(Effect):
             return (f"stick-slip: its wavelength {lam:.3g} {length} is the distance the body "
                     f"slips per stick-slip cycle ({cycle.travel:.3g} {length}): the force oscillates with "
                     f"the cycle, not with the position")
+        if cycle is not None and lam < 2 * cycle.travel:
+            # the body rests (and the force is read at rest) only every cycle's travel:
+            # the rest positions sample x too coarsely for a shorter period (Nyquist)
+            return (f"stick-slip: its wavelength {lam:.3g} is shorter than twice the "
+                    f"distance the body slips per cycle ({cycle.travel:.3g}); the record "
+                    f"holds the body only at positions that far apart, too few to resolve "
+                    f"a period that short")
         ripple = params["A"] * np.sin(2 * np.pi * pb.x / lam + params["phase"])
         own = pb.measured - pb.predict(params) + ripple  # what the ripple took
         middle = 0.5 * (float(np.min(pb.x)) + float(np.max(pb.x)))

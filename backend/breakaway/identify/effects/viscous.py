@@ -1,4 +1,4 @@
-"""``viscous``: σ·v added to the steady state (MODEL.md §7)."""
+"""``viscous``: σ·v added to the steady state."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""``viscous-power``: σ·sgn(v)·|v|ⁿ in place of σ·v (MODEL.md §7): friction that rises
+"""``viscous-power``: σ·sgn(v)·|v|ⁿ in place of σ·v: friction that rises
 with speed along a curve (a lubricated gear, a seal; n = 2 is quadratic drag)."""
 
 from __future__ import annotations
@@ -8,7 +8,7 @@ import numpy as np
 from ..residuals import correlation
 from .base import Effect, Param, sliding_unseen, _project
 
-#: The range of the exponent n (MODEL.md §7).
+#: The range of the exponent n.
 EXPONENT_BOUNDS = (0.2, 3.0)
 #: A Coulomb level below this share of the force scale has been taken by the curve.
 LEVEL_TAKEN = 1e-6
@@ -38,14 +38,19 @@ class ViscousPower(Effect):
     regressor = {"timeseries": "v", "steady": "v"}
 
     def unresolved(self, pb, params):
-        """A record that never slides does not show a rise with speed; and a concave
-        σ·|v|ⁿ that takes the whole Coulomb level (Fc driven to its bound 0, as a nearly
-        flat |v|^0.3 can) is the level, not a rise."""
+        """A record that never slides does not show a rise with speed; and in a time
+        series a concave σ·|v|ⁿ that takes the whole Coulomb level (Fc driven to its
+        bound 0, as a nearly flat |v|^0.3 can) is the level, not a rise: it switches
+        with the direction as a level does and takes, after each reversal, whatever
+        transient the record holds. On a steady curve the rows are separate set-points:
+        the curve's shape over the speeds shown is what they hold, and what it implies
+        below the slowest is said by the ``beyond-data`` warning on Fc."""
         unseen = sliding_unseen(pb, params)
         if unseen:
             return unseen
         levels = [params[k] for k in ("Fc", "Fc_neg") if k in params]
-        if params["n"] < 1.0 and min(levels) <= LEVEL_TAKEN * pb.scales.force:
+        if pb.kind == "timeseries" and params["n"] < 1.0 \
+                and min(levels) <= LEVEL_TAKEN * pb.scales.force:
             return (f"its σ·|v|^{params['n']:.2g} takes the Coulomb level (Fc = "
                     f"{min(levels):.3g} {pb.data.unit('N')}): a curve that flat stands in "
                     f"for the level, not for a rise with speed")

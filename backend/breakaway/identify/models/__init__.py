@@ -1,4 +1,4 @@
-"""Forward models of the three data kinds with any set of §7 effects (MODEL.md §6, §7).
+"""Forward models of the three data kinds with any set of the library's effects.
 
 One :class:`Problem` subclass per kind binds a dataset to a set of effects. The base
 class maps between the report's parameter dictionary and the vector θ that
@@ -26,8 +26,8 @@ PROBLEMS = {cls.kind: cls for cls in (TimeseriesProblem, SteadyProblem, Breakawa
 def problem_for(data: Dataset, effects=(), fixed=None, ties=None) -> Problem:
     """The :class:`Problem` of ``data``'s kind with ``effects``.
 
-    Break-away data at fewer than three distinct rates get a level-only problem
-    (MODEL.md §8 ``single-rate``).
+    Break-away data at fewer than three distinct rates get a level-only problem (the
+    single-rate warning).
     """
     if data.kind == "breakaway":
         level_only = np.unique(data.columns["k"]).size < MIN_RATES

@@ -155,7 +155,7 @@ class Problem:
 
     def curve_speeds(self, params: dict) -> np.ndarray:
         """The speeds [m/s] at which the data show the steady curve g(v) (E2): where
-        they hold information on Fc, Fs, V and δ (MODEL.md §8 ``beyond-data``)."""
+        they hold information on Fc, Fs, V and δ."""
         raise NotImplementedError
 
     def held_force(self, params: dict) -> tuple[float, float] | None:
@@ -165,5 +165,5 @@ class Problem:
         return None
 
     def variables(self) -> dict[str, np.ndarray]:
-        """The regressors a residual can depend on (MODEL.md §8 ``residual_structure``)."""
+        """The regressors a residual can depend on."""
         raise NotImplementedError

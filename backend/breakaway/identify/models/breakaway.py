@@ -1,4 +1,4 @@
-"""(E13) at measured rates (MODEL.md §6 ``breakaway``)."""
+"""(E13) at measured rates."""
 
 from __future__ import annotations
 
@@ -11,7 +11,7 @@ from .base import Problem, Scales, _robust_scale
 
 
 class BreakawayProblem(Problem):
-    """(E13) with F̂ = avg at z* = 0.95 (MODEL.md §6 ``breakaway``).
+    """(E13) with F̂ = avg at z* = 0.95.
 
     With fewer than three distinct rates only the level is determined: the problem is
     then built with ``level_only`` (Fc tied to Fs, V and δ held) by :func:`problem_for`.

@@ -1,4 +1,4 @@
-"""(E2) at measured speeds (MODEL.md §6 ``steady``)."""
+"""(E2) at measured speeds."""
 
 from __future__ import annotations
 
@@ -9,7 +9,7 @@ from .base import Problem, Scales, _robust_scale
 
 
 class SteadyProblem(Problem):
-    """(E2) at the measured speeds (MODEL.md §6 ``steady``)."""
+    """(E2) at the measured speeds."""
 
     kind = "steady"
     base_names = ("Fc", "Fs", "V", "delta")

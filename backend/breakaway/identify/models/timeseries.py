@@ -1,4 +1,4 @@
-"""(E6') along a measured x(t) (MODEL.md §6 ``timeseries``)."""
+"""(E6') along a measured x(t)."""
 
 from __future__ import annotations
 
@@ -9,7 +9,7 @@ from scipy.ndimage import uniform_filter1d
 
 from ...presliding import _presliding_kernel
 from ...steady import stribeck_kernel
-from ..derivatives import block_velocity, derivatives, positions, smooth_fit
+from ..derivatives import WINDOWS, block_velocity, derivatives, local_fit, positions, smooth_fit
 from ..effects import engaged_presliding
 from ..kinematics import REVERSAL_STEPS, direction, position_noise, quantum
 from ..stickslip import find_stick_slip
@@ -39,7 +39,7 @@ NOISY_X_WINDOW = 21
 
 
 class TimeseriesProblem(Problem):
-    """(E6') along the measured x(t) (MODEL.md §6 ``timeseries``)."""
+    """(E6') along the measured x(t)."""
 
     kind = "timeseries"
     base_names = ("Fc", "Fs", "V", "delta", "s")
@@ -68,7 +68,7 @@ class TimeseriesProblem(Problem):
         self.noise_x = position_noise(self.recorded_x) if self.quantum_x == 0 else 0.0
         self.resolution_x = max(self.quantum_x, self.noise_x)
         self.hysteresis = REVERSAL_STEPS * self.resolution_x
-        #: v and a, and how they were taken (MODEL.md §7 ``derivatives``)
+        #: v and a, and how they were taken
         self.x = self.model_positions(self.recorded_x)
         self.derivatives = derivatives(self.t, self.recorded_x, self.quantum_x, self.noise_x,
                                        self.blocks)
@@ -101,6 +101,17 @@ class TimeseriesProblem(Problem):
         """v of another position record of the same samples (the body behind a play, x
         dithered by its resolution), taken as the record's own v is."""
         return block_velocity(self.t, x, self.resolution_x, self.blocks)
+
+    def kinematic_acceleration(self, x):
+        """a of another position record of the same samples, taken as the record's own
+        a is (the same window, block by block)."""
+        if self.derivatives.method == "gradient":
+            return np.concatenate([np.gradient(np.gradient(x[a:b], self.t[a:b]), self.t[a:b])
+                                   for a, b in self.blocks])
+        window = self.derivatives.window
+        v = self.kinematic_velocity(x)
+        return np.concatenate([local_fit(self.t[a:b], x[a:b], window)[1] if b - a >= WINDOWS[0]
+                               else np.gradient(v[a:b], self.t[a:b]) for a, b in self.blocks])
 
     def kinematic_direction(self, x, hysteresis=None):
         """Directions of a position record of the same samples, with this record's
@@ -137,6 +148,8 @@ class TimeseriesProblem(Problem):
         if dither is not None:
             ctx["x"] = self.x + dither
             ctx["v"] = self.kinematic_velocity(ctx["x"])
+            if any(effect.reads_acceleration for effect in self.effect_objects):
+                ctx["a"] = self.kinematic_acceleration(ctx["x"])
         if directions is not None:
             ctx["d"] = directions
         for effect in self.effect_objects:

@@ -29,6 +29,9 @@ DROP_SEEN = (0.1, 0.9)
 ABOVE_SHARE = 0.05
 #: ... and by this many noise floors.
 ABOVE_NOISE = 3.0
+#: Fc is beyond the data when a concave viscous term's extrapolation below the slowest
+#: speed shown makes up more than this share of the friction there.
+EXTRAPOLATED_SHARE = 0.25
 #: The peak Fs is an extrapolation through the drop's shape: with δ's relative standard
 #: error above this, the peak and V are not determined.
 SHAPE_RELATIVE_ERROR = 0.5
@@ -98,10 +101,12 @@ def beyond_data(fit: FitResult, noise: float, known=None) -> dict[str, str]:
     slowest, fastest = float(np.min(speeds)), float(np.max(speeds))
     if "n" in p and p["n"] < 1.0:
         # a concave σ·|v|ⁿ rises fastest below the slowest speed the data show: what it
-        # adds there is an extrapolation, and Fc (the level at v → 0) with it
+        # adds there is an extrapolation of the curve's form. Where that is a small part of
+        # the level, Fc is still a result (its standard error carries the trade with n);
+        # where it is a large part, Fc is the form's guess, and the data set a bound
         below = p["sigma"] * slowest ** p["n"]
-        if below > ABOVE_NOISE * noise:
-            at_slowest = p["Fc"] + below
+        at_slowest = p["Fc"] + below
+        if below > ABOVE_NOISE * noise and below > EXTRAPOLATED_SHARE * at_slowest:
             add(("Fc", "Fc_neg"), (
                 f"the curved viscous term σ·|v|^{p['n']:.2g} adds {below:.4g} {unit} between "
                 f"rest and the slowest speed at which the data show the curve "

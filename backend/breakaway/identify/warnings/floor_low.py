@@ -1,5 +1,5 @@
 """``floor-low``: a residual above the noise floor that is noise-like all the same
-(MODEL.md §8; the floor, a median, reads the quiet part of uneven noise)."""
+(the floor, a median, reads the quiet part of uneven noise)."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""``stick-slip`` (MODEL.md §8): the velocity itself sticks and slips, and a force
+"""``stick-slip``: the velocity itself sticks and slips, and a force
 oscillation at that period is the stick-slip cycle, not position ripple."""
 
 from __future__ import annotations

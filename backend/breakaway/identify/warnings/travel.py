@@ -1,5 +1,5 @@
 """``short-travel``: the residual depends on x at a scale the travel cannot hold twice,
-so ``ripple`` was not tried there (MODEL.md §8)."""
+so ``ripple`` was not tried there."""
 
 from __future__ import annotations
 
