@@ -62,6 +62,8 @@ class FitReport(BaseModel):
     kind: Literal["timeseries", "steady", "breakaway"]
     n: int
     noise_floor: float | None
+    #: what the resolution of x adds to the prediction error through the fitted model [N]
+    input_floor: float | None = None
     base: ModelFit
     steps: list[FitStep]
     effects: list[str]

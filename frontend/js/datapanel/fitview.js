@@ -66,6 +66,12 @@ export function renderErrorTable(report) {
     element("tr", {}, element("th", { scope: "row", text: `noise floor [${unit}]` }),
       element("td", { "data-metric": "noise_floor", colspan: "2", text: formatNumber(report.noise_floor, 4) })),
   );
+  // what x's resolution adds through the model: shown where there is any, beside the
+  // force's own noise, so that a residual above the noise floor is read against both
+  if (report.input_floor > 0) {
+    body.append(element("tr", {}, element("th", { scope: "row", text: `input floor (x's resolution) [${unit}]` }),
+      element("td", { "data-metric": "input_floor", colspan: "2", text: formatNumber(report.input_floor, 4) })));
+  }
 }
 
 /** "moves with V (r = −0.997): Fc + 613·V = 13.28 ± 0.014 N is determined": the
