@@ -3,11 +3,12 @@
 // parameters each is drawn with; under the break-away plot, the sentence on its shaded
 // band of rates (models/sensitivity.js), once a state settles.
 
-import { bandSentence, rateBand } from "../models/sensitivity.js";
+import { rateBand } from "../models/sensitivity.js";
 import { captionOf } from "../page/controls.js";
 import { onFrameDrawn } from "../page/render.js";
 import { exploreBody } from "../page/state.js";
 import { $, app } from "../page/store.js";
+import { fmt, quantity } from "../page/units.js";
 import { registerView } from "../page/views.js";
 import { simStale } from "../ramp/simulation.js";
 import {
@@ -52,7 +53,21 @@ registerView({
     bandOf(state)),
 });
 
+/** The sentence under the break-away plot that says what the band is and why, in the
+ *  units of `state`. */
+function bandSentence(band, state) {
+  if (!band) {
+    return "Fs = Fc: there is no Stribeck drop, so F_ba(k) does not depend on V or δ "
+      + "at any rate; every ramp measures the same level.";
+  }
+  const { F_hat: fHat, V } = exploreBody(state);
+  return `Shaded: the rates k = ${fmt(band.k[0])} to ${quantity(band.k[1], "N/s", state)} where F_ba(k) `
+    + `changes most with V and δ (F̂ = ${fHat}). There the break-away speed `
+    + `ẋ* = k/(s·F̂·|ln z*|), ${fmt(band.speed[0])} to ${quantity(band.speed[1], "m/s", state)}, falls inside `
+    + `the Stribeck drop around V = ${quantity(V, "m/s", state)}; slower ramps break away at about Fs, `
+    + "faster ones at about Fc, and measure those levels and nothing of V or δ.";
+}
+
 onFrameDrawn(() => {
-  const body = exploreBody(app.state);
-  $("ba-band").textContent = bandSentence(bandOf(app.state), body, body.F_hat);
+  $("ba-band").textContent = bandSentence(bandOf(app.state), app.state);
 });
