@@ -5,7 +5,7 @@
 
 import { rateBand } from "../models/sensitivity.js";
 import { captionOf } from "../page/controls.js";
-import { onFrameDrawn } from "../page/render.js";
+import { onComputeAhead, onFrameDrawn } from "../page/render.js";
 import { exploreBody } from "../page/state.js";
 import { $, app } from "../page/store.js";
 import { fmt, quantity } from "../page/units.js";
@@ -18,18 +18,23 @@ import {
 const STRIBECK = ["Fc", "Fs", "V", "delta", "sigma"];
 const QUASI_STATIC = [...STRIBECK, "s", "k", "z_ba"];
 
-const bands = { key: null, band: null };
+/** Bands kept: the current state's and those one key press away (made ahead). */
+const BANDS_KEPT = 4;
+const bands = new Map();
 
-/** The band of the state's parameters, computed once per set of them. */
+/** The band of the state's parameters, computed once per set of them (1201 rates, four
+ *  break-away forces each: a tenth of a live frame under a phone's processor). */
 function bandOf(state) {
   const body = exploreBody(state);
   const key = JSON.stringify(body);
-  if (bands.key !== key) {
-    bands.key = key;
-    bands.band = rateBand(body, body.F_hat);
+  if (!bands.has(key)) {
+    bands.set(key, rateBand(body, body.F_hat));
+    if (bands.size > BANDS_KEPT) bands.delete(bands.keys().next().value);
   }
-  return bands.band;
+  return bands.get(key);
 }
+
+onComputeAhead(bandOf);
 
 registerView({
   id: "stribeck", source: "frame", caption: captionOf(STRIBECK),
