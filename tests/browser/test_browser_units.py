@@ -12,6 +12,7 @@ import pytest
 
 from breakaway.identify.csvdata.dataset import _ROTARY_UNIT, unit_of
 from breakaway.identify.synthetic import make_dataset, to_csv
+from breakaway.plan.checks import _ramps_record
 
 pytestmark = pytest.mark.browser
 
@@ -98,6 +99,33 @@ def test_a_rotary_fit_carried_into_the_loop_speaks_the_rigs_units(explorer):
     explorer.ready()
     assert explorer.state()["units"] == "linear"
     assert page.get_by_label("V [m/s]", exact=True).is_visible()
+
+
+def test_the_planner_asks_and_answers_in_the_rigs_units(explorer):
+    # break-away forces of a rotary joint at rates too high to see V and δ: the planner
+    # under the report asks for the rig's limits and proposes ramps in N·m and rad
+    text = "# units: rotary\n" + to_csv(_ramps_record(1, 40.0, 300.0, 0.005))
+    explorer.open("?sim=0")
+    page = explorer.page
+    page.get_by_label("Data file", exact=True).set_input_files(
+        {"name": "joint-ramps.csv", "mimeType": "text/csv", "buffer": text.encode()})
+    page.wait_for_selector(f'{PANEL}[data-state="done"]', timeout=60_000)
+    assert page.get_by_role("region", name="Plan the next experiment").is_visible()
+    page.get_by_label("Largest force u_max [N·m]", exact=True).fill("3")
+    page.get_by_label("Runs", exact=True).fill("10")
+    page.get_by_label("Kind of runs").select_option("steady")
+    assert page.get_by_label("Slowest speed held v_min [rad/s]", exact=True).is_visible()
+    assert page.get_by_label("Largest speed v_max [rad/s]", exact=True).is_visible()
+    page.get_by_label("Kind of runs").select_option("sine")
+    assert page.get_by_label("Travel [rad]", exact=True).is_visible()
+    page.get_by_label("Kind of runs").select_option("ramps")
+    page.get_by_role("button", name="Plan", exact=True).click()
+    page.locator("#plan-results").wait_for(state="visible")
+    design = page.locator("#plan-design").inner_text()
+    assert re.search(r"at k = [\d.,() ×]+ N·m/s, each up to at most [\d.]+ N·m", design), design
+    box = page.evaluate("""() => [...document.querySelectorAll('#plan-box label, #plan-box')]
+        .map((el) => el.innerText)""")
+    assert [unit for said in box for unit in linear_units(said)] == []
 
 
 @pytest.mark.parametrize("units,angle", [("rotary", "rad"), ("rotary-deg", "deg")])

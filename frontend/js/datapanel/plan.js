@@ -5,6 +5,7 @@
 
 import { postJSON } from "../page/api.js";
 import { parseNumber } from "../page/controls.js";
+import { unit, unitsOfReport } from "../page/units.js";
 import { drawFigure } from "../plots/draw.js";
 import { download } from "../plots/export.js";
 import { element } from "./fitview.js";
@@ -23,17 +24,20 @@ function fieldValue(value) {
   return value == null || !Number.isFinite(value) ? "" : String(Number(value.toPrecision(4)));
 }
 
+/** The limit fields' labels in the record's units: the report's own, or those of its
+ *  unit system where it names none (a record of break-away forces has no x). */
 function setLabels(report) {
-  const u = report.units ?? {};
-  const F = u.F ?? "N";
-  const v = u.v ?? "m/s";
+  const units = { units: unitsOfReport(report) };
+  const named = (key, linear) => report.units?.[key] ?? unit(linear, units);
+  const F = named("F", "N");
+  const v = named("v", "m/s");
   $("plan-u-max-label").textContent = `Largest force u_max [${F}]`;
   $("plan-v-max-label").textContent = `Largest speed v_max [${v}]`;
   $("plan-v-min-label").textContent = `Slowest speed held v_min [${v}]`;
-  $("plan-travel-label").textContent = `Travel [${u.x ?? "m"}]`;
+  $("plan-travel-label").textContent = `Travel [${named("x", "m")}]`;
   $("plan-noise-label").textContent = `Noise of one force [${F}]`;
-  $("plan-s-low-label").textContent = `Presliding scale s at least [${u.s ?? "1/m"}]`;
-  $("plan-s-high-label").textContent = `Presliding scale s at most [${u.s ?? "1/m"}]`;
+  $("plan-s-low-label").textContent = `Presliding scale s at least [${named("s", "1/m")}]`;
+  $("plan-s-high-label").textContent = `Presliding scale s at most [${named("s", "1/m")}]`;
 }
 
 /** The fields a family uses, the others hidden; the range of s where the record holds

@@ -45,17 +45,3 @@ export function rateBand(p, fHat = p.F_hat) {
   const speed = (k) => breakawayVelocity(k, p, fHat);
   return { k: [rates[low], rates[high]], speed: [speed(rates[low]), speed(rates[high])], peak: rates[peak] };
 }
-
-/** The sentence under the break-away plot that says what the band is and why. */
-export function bandSentence(band, p, fHat = p.F_hat) {
-  if (!band) {
-    return "Fs = Fc: there is no Stribeck drop, so F_ba(k) does not depend on V or δ "
-      + "at any rate; every ramp measures the same level.";
-  }
-  const g = (x) => String(Number(x.toPrecision(3)));
-  return `Shaded: the rates k = ${g(band.k[0])} to ${g(band.k[1])} N/s where F_ba(k) `
-    + `changes most with V and δ (F̂ = ${fHat}). There the break-away speed `
-    + `ẋ* = k/(s·F̂·|ln z*|), ${g(band.speed[0])} to ${g(band.speed[1])} m/s, falls inside `
-    + `the Stribeck drop around V = ${g(p.V)} m/s; slower ramps break away at about Fs, `
-    + "faster ones at about Fc, and measure those levels and nothing of V or δ.";
-}

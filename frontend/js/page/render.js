@@ -38,7 +38,7 @@ const RHYTHM_MS = 1000;
 const HOLD_MAX_MS = 750;
 const GAPS_KEPT = 3;
 
-const listeners = { left: [], drawn: [], before: [] };
+const listeners = { left: [], drawn: [], before: [], ahead: [] };
 
 /** Call `fn({frameChanged})` whenever the state the page showed is left for another;
  *  `frameChanged` false when the model's curves stay (the mass m moved). */
@@ -55,6 +55,12 @@ export function onFrameDrawn(fn) {
  *  answers of views on their way, so that Plotly draws them once, not twice). */
 export function beforeSettle(fn) {
   listeners.before.push(fn);
+}
+
+/** Call `fn(state)` while the page is idle for each state one key press away, so that
+ *  what a view derives from the state for its live frame is made before the press. */
+export function onComputeAhead(fn) {
+  listeners.ahead.push(fn);
 }
 
 function notify(kind, detail) {
@@ -151,6 +157,7 @@ function computeAhead() {
   const body = exploreBody(state);
   const key = JSON.stringify(body);
   if (!app.liveFrames.has(key) && key !== app.frameKey) keepLiveFrame(key, modelFrame(body));
+  notify("ahead", state);
   if (ahead.length) onIdle(computeAhead);
 }
 

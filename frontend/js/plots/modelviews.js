@@ -3,11 +3,12 @@
 // parameters each is drawn with; under the break-away plot, the sentence on its shaded
 // band of rates (models/sensitivity.js), once a state settles.
 
-import { bandSentence, rateBand } from "../models/sensitivity.js";
+import { rateBand } from "../models/sensitivity.js";
 import { captionOf } from "../page/controls.js";
-import { onFrameDrawn } from "../page/render.js";
+import { onComputeAhead, onFrameDrawn } from "../page/render.js";
 import { exploreBody } from "../page/state.js";
 import { $, app } from "../page/store.js";
+import { fmt, quantity } from "../page/units.js";
 import { registerView } from "../page/views.js";
 import { simStale } from "../ramp/simulation.js";
 import {
@@ -17,18 +18,23 @@ import {
 const STRIBECK = ["Fc", "Fs", "V", "delta", "sigma"];
 const QUASI_STATIC = [...STRIBECK, "s", "k", "z_ba"];
 
-const bands = { key: null, band: null };
+/** Bands kept: the current state's and those one key press away (made ahead). */
+const BANDS_KEPT = 4;
+const bands = new Map();
 
-/** The band of the state's parameters, computed once per set of them. */
+/** The band of the state's parameters, computed once per set of them (1201 rates, four
+ *  break-away forces each: a tenth of a live frame under a phone's processor). */
 function bandOf(state) {
   const body = exploreBody(state);
   const key = JSON.stringify(body);
-  if (bands.key !== key) {
-    bands.key = key;
-    bands.band = rateBand(body, body.F_hat);
+  if (!bands.has(key)) {
+    bands.set(key, rateBand(body, body.F_hat));
+    if (bands.size > BANDS_KEPT) bands.delete(bands.keys().next().value);
   }
-  return bands.band;
+  return bands.get(key);
 }
+
+onComputeAhead(bandOf);
 
 registerView({
   id: "stribeck", source: "frame", caption: captionOf(STRIBECK),
@@ -52,7 +58,21 @@ registerView({
     bandOf(state)),
 });
 
+/** The sentence under the break-away plot that says what the band is and why, in the
+ *  units of `state`. */
+function bandSentence(band, state) {
+  if (!band) {
+    return "Fs = Fc: there is no Stribeck drop, so F_ba(k) does not depend on V or δ "
+      + "at any rate; every ramp measures the same level.";
+  }
+  const { F_hat: fHat, V } = exploreBody(state);
+  return `Shaded: the rates k = ${fmt(band.k[0])} to ${quantity(band.k[1], "N/s", state)} where F_ba(k) `
+    + `changes most with V and δ (F̂ = ${fHat}). There the break-away speed `
+    + `ẋ* = k/(s·F̂·|ln z*|), ${fmt(band.speed[0])} to ${quantity(band.speed[1], "m/s", state)}, falls inside `
+    + `the Stribeck drop around V = ${quantity(V, "m/s", state)}; slower ramps break away at about Fs, `
+    + "faster ones at about Fc, and measure those levels and nothing of V or δ.";
+}
+
 onFrameDrawn(() => {
-  const body = exploreBody(app.state);
-  $("ba-band").textContent = bandSentence(bandOf(app.state), body, body.F_hat);
+  $("ba-band").textContent = bandSentence(bandOf(app.state), app.state);
 });
