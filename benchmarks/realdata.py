@@ -22,6 +22,8 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from results import Results  # noqa: E402
 #: Where the development set is looked for when neither option nor variable says.
 DEFAULT = ROOT.parent / "shared" / "realdata-dev"
 #: One judged line: ``STATUS file: …``.
@@ -77,12 +79,22 @@ def main() -> int:
     print(result.stdout, end="")
     if result.stderr:
         print(result.stderr, end="", file=sys.stderr)
-    print("\n| rig | OK | WARN-MISSING | WRONG | FAIL |\n|---|---|---|---|---|")
-    for rig, counts in sorted(by_rig(result.stdout.splitlines()).items()):
-        print(f"| {rig} | " + " | ".join(str(counts.get(s, 0)) for s in
-                                          ("OK", "WARN-MISSING", "WRONG", "FAIL")) + " |")
-    print(f"\n{time.perf_counter() - started:.0f} s; the judge exits {result.returncode} "
-          f"({'its targets met' if result.returncode == 0 else 'its targets not met'})")
+    lines = result.stdout.splitlines()
+    out = Results("realdata", __file__)
+    statuses = ("OK", "WARN-MISSING", "WRONG", "FAIL")
+    out.table(["rig", *statuses], [[rig, *(counts.get(s, 0) for s in statuses)]
+                                   for rig, counts in sorted(by_rig(lines).items())])
+    misses = [line.split(" — ", 1) for line in lines if LINE.match(line)
+              and not line.startswith("OK ")]
+    if misses:
+        out.table(["recording", "why the judge does not accept it"],
+                  [[LINE.match(head).group(2), why if len(rest) else ""]
+                   for head, *rest in misses for why in (rest[0] if rest else "",)])
+    summary = next((line for line in lines if line.startswith("realdata:")), "")
+    out.note(f"{summary.removeprefix('realdata: ')}; {time.perf_counter() - started:.0f} s "
+             f"for {sum(1 for _ in recordings.glob('*.csv'))} fits (-j {args.j}); the judge "
+             f"exits {result.returncode} ({'its targets met' if result.returncode == 0 else 'its targets not met'}).")
+    out.write()
     return result.returncode
 
 
