@@ -93,6 +93,22 @@ def diagnose(data: Dataset, progress=None) -> Diagnosis:
         return _diagnose(data, progress)
 
 
+def _search(search: Selection, start: FitResult, available):
+    """Forward rounds from ``start``, a backward pass, and a swap where structure is left
+    (with a white residual no rival can lower the BIC by the required drop); after a
+    swap, the effect it took out may still be there beside its replacement."""
+    current, current_heldout = search.forward(start, available)
+    if len(current.effects) > 1:
+        current, current_heldout = search.backward(current, current_heldout)
+    if current.effects and not search.white(current):
+        swapped, swapped_heldout = search.swap(current, current_heldout, available)
+        if swapped is not current:
+            current, current_heldout = search.forward(swapped, available)
+            if len(current.effects) > 1:
+                current, current_heldout = search.backward(current, current_heldout)
+    return current, current_heldout
+
+
 def _diagnose(data: Dataset, progress, set_aside: SetAside | None = None,
               carried: list | None = None) -> Diagnosis:
     """One pass; a second (given ``set_aside`` and the first pass's data warnings,
@@ -134,19 +150,8 @@ def _diagnose(data: Dataset, progress, set_aside: SetAside | None = None,
             available.append(effect)
         else:
             search.verdicts[effect] = Candidate(reason=why)
-    current, current_heldout = search.forward(screen_base, available)
+    current, current_heldout = _search(search, screen_base, available)
     heldout_before = search.heldout_base
-    if len(current.effects) > 1:
-        current, current_heldout = search.backward(current, current_heldout)
-    if current.effects and not search.white(current):
-        # a swap only pays where structure is left: with a white residual no rival can
-        # lower the BIC by MIN_BIC_DROP
-        swapped, swapped_heldout = search.swap(current, current_heldout, available)
-        if swapped is not current:
-            # the effect a swap took out may still be there beside its replacement
-            current, current_heldout = search.forward(swapped, available)
-            if len(current.effects) > 1:
-                current, current_heldout = search.backward(current, current_heldout)
     # the search keeps the drop, which a missing effect can distort into an unresolved
     # one; the chosen model's drop is judged
     dropless = unresolved_drop(current, noise.value)
@@ -156,6 +161,12 @@ def _diagnose(data: Dataset, progress, set_aside: SetAside | None = None,
         current = without_drop(current)
         current, current_heldout = search.backward(current, search.heldout(current),
                                                    keep_one=False)
+        # a candidate judged beside the drop may have traded with it (a curved viscous
+        # term taking Fc to 0 while Fs holds the level at rest): without the drop each
+        # accepted effect's rivals are tried again in its place (no new additions: what
+        # the search left out beside the drop stays out)
+        if current.effects and not search.white(current):
+            current, current_heldout = search.swap(current, current_heldout, available)
         if not screen_base.problem.tied:
             screen_base = without_drop(screen_base)
             heldout_before = search.heldout(screen_base)

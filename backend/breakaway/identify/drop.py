@@ -9,7 +9,8 @@ and it drags Fc with it (to 0, or to the top of a fall that is never seen). The 
 unresolved (:func:`unresolved_drop`) when
 
 - Fs − Fc is within :data:`GAP_SIGMAS` standard errors of 0;
-- V lies beyond the fastest speed at which the data show the curve;
+- V lies beyond the fastest speed at which the data show the curve, and the part of
+  the drop over the speeds they show is within :data:`FALL_NOISE` noise floors;
 - δ sits on a bound of its range;
 - the steady curve with the effects that act on the body does not fall, anywhere over
   the speeds the data show it at, by more than :data:`FALL_NOISE` noise floors.
@@ -65,6 +66,17 @@ def largest_fall(problem, params: dict, slowest: float, fastest: float) -> float
     return max(falls, default=0.0)
 
 
+def _shown_fall(problem, params: dict, slowest: float, fastest: float) -> float:
+    """How far g (E2) alone falls [N] between the slowest and the fastest speed the
+    data show the curve at (either direction): the part of a drop they hold. A drop
+    whose V lies just beyond the fastest speed still falls by half within it."""
+    speeds = np.array([slowest, fastest])
+    falls = [float(np.subtract(*stribeck_kernel(speeds, *problem._levels(
+        params, np.full(2, negative)), params["V"], params["delta"])))
+        for negative, (_, level) in zip((False, True), LEVELS) if level in params]
+    return max(falls, default=0.0)
+
+
 def unresolved_drop(fit: FitResult, noise: float) -> str | None:
     """Why the data do not resolve ``fit``'s Stribeck drop (None: they do, or the
     model has no drop to judge: tied levels, a level-only fit, a record that never
@@ -87,10 +99,11 @@ def unresolved_drop(fit: FitResult, noise: float) -> str | None:
         return (f"{level} − {low} = {gap:.3g} ± {se:.2g} {unit} is within "
                 f"{GAP_SIGMAS:g} standard errors of no drop")
     fastest, slowest = float(np.max(speeds)), float(np.min(speeds))
-    if p["V"] > fastest:
+    if p["V"] > fastest and not _shown_fall(problem, p, slowest, fastest) > FALL_NOISE * noise:
         return (f"its Stribeck velocity V = {p['V']:.3g} {speed_unit} lies beyond the "
                 f"fastest speed at which the data show the curve ({fastest:.3g} "
-                f"{speed_unit})")
+                f"{speed_unit}), and the part of the drop over the speeds they show is "
+                f"within {FALL_NOISE:g} noise floors")
     if a.bound.get("delta") or p["delta"] <= DELTA_BOUNDS[0] or p["delta"] >= DELTA_BOUNDS[1]:
         return f"its shape δ = {p['delta']:.3g} sits on a bound of its range"
     if problem.kind != "breakaway":

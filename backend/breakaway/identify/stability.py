@@ -81,7 +81,12 @@ def _holds(half: FitResult, name: str) -> bool:
 def unstable(data: Dataset, fit: FitResult, effect: str) -> str | None:
     """Why ``effect``'s parameters in ``fit`` do not hold in both halves of the record
     (None: they do where both halves determine them, or ``data`` is not a time series)."""
-    if data.kind != "timeseries":
+    if data.kind != "timeseries" or EFFECTS[effect].acts_through == "t":
+        # an effect through time (a drift) shows its own form instead (its
+        # ``unresolved``: one monotone trend in every stroke and both directions):
+        # halves in time cut its regressor's range in two, where an unknown dependence
+        # that moves with time (a position profile the strokes sweep) pulls each half
+        # its own way
         return None
     try:
         first, second = _half_fits(data, fit, _halves(data.n))
