@@ -117,6 +117,14 @@ def _targets(requested, knowledge: Knowledge, family, names, given) -> tuple[lis
             dropped[name] = (f"{sym} is already determined by the data ({sym} = "
                              f"{knowledge.values[name]:.4g} ± {se:.2g} {units.get(name, '')})"
                              .replace(" )", ")") + ": nothing new to measure for it")
+            level = "Fs" if name == "Fc" else "Fs_neg" if name == "Fc_neg" else None
+            if level and level in knowledge.ranges:
+                # the report's Fc is the model's without a drop; a plan that opens the
+                # drop estimates Fc beside Fs, V and δ, with the larger model's error
+                dropped[name] += (f"; that standard error is the model's without a "
+                                  f"Stribeck drop, and after a plan that opens the drop "
+                                  f"{sym} is estimated beside it (its standard error there "
+                                  f"is the larger model's)")
         elif name in given:
             dropped[name] = f"{symbol(name)} is taken as given: {given[name]}"
         elif name not in family.depends:
