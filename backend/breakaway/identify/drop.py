@@ -96,7 +96,7 @@ def unresolved_drop(fit: FitResult, noise: float) -> str | None:
             gaps.append((level, low, gap, se))
     if all(se is not None and gap <= GAP_SIGMAS * se for _, _, gap, se in gaps):
         level, low, gap, se = gaps[0]
-        return (f"{level} − {low} = {gap:.3g} ± {se:.2g} {unit} is within "
+        return (f"{level} − {low} = {gap:.3g} {unit} ± {se:.2g} {unit} is within "
                 f"{GAP_SIGMAS:g} standard errors of no drop")
     fastest, slowest = float(np.max(speeds)), float(np.min(speeds))
     if p["V"] > fastest and not _shown_fall(problem, p, slowest, fastest) > FALL_NOISE * noise:

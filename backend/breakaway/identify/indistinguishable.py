@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import math
 
-from .effects import EFFECTS, viscous_equivalent_of_detection
+from .effects import EFFECTS, param_spec, viscous_equivalent_of_detection
 from .judgement import MIN_BIC_DROP
 from .warnings import warning
 
@@ -36,8 +36,10 @@ def like_a_dependence(effect, fit, key, variables) -> dict:
     ``variables`` (which the library lacks) would predict its ``key`` as well on these
     data (inertia on one sine, where a = −ω²·x): the physical effect is named, and the
     report says that the data do not tell them apart."""
+    unit = fit.problem.data.unit(param_spec(key, fit.effects).unit)
+    value = f"{fit.params[key]:.4g}" + (f" {unit}" if unit not in ("", "-") else "")
     return warning("indistinguishable", key, (
-        f"{effect} is named with {key} = {fit.params[key]:.4g}, but on these data a force "
+        f"{effect} is named with {key} = {value}, but on these data a force "
         f"that depends smoothly on {variables} would predict the same: a record with "
         f"other motions (other speeds, amplitudes or frequencies) would tell them apart"))
 

@@ -36,6 +36,9 @@ RELATIVE_AGREEMENT = 0.25
 AGREEMENT_SIGMAS = 2.0
 #: ... and an angle within this [rad].
 PHASE_AGREEMENT = 0.5
+#: A half's value of an effect's size votes only where its correlation with every other
+#: parameter of the half's fit stays at or below this.
+VOTE_CORRELATION = 0.9
 #: Evaluations of each half's refit (from the whole record's solution).
 HALF_EVALUATIONS = 60
 
@@ -65,17 +68,25 @@ def _agree(name, spec, a: FitResult, b: FitResult, centre: float = 0.0) -> bool:
                       AGREEMENT_SIGMAS * math.hypot(a.stderr[name] or 0.0, b.stderr[name] or 0.0))
 
 
-def _holds(half: FitResult, name: str) -> bool:
+def _holds(half: FitResult, name: str, size: bool = False) -> bool:
     """Whether ``half`` determines ``name``'s value: off its bounds, with a standard error
-    no larger than the value (a correlation with another parameter of the same model does
-    not void the value: both halves fit the same model)."""
-    why = half.assessment.why.get(name)
-    se = half.stderr.get(name)
-    if why is not None and not why.startswith("correlated:"):
+    no larger than the value. A shape parameter correlated with another of the same model
+    still votes (both halves fit the same model); an effect's size does not when a
+    correlation above :data:`VOTE_CORRELATION` ties it to another parameter: inside a
+    half of a constant-acceleration run m_e·a moves with Fc (the ramps in and out of the
+    constant keep the correlation under 0.99), and the half gives m_e whatever its Fc
+    leaves."""
+    a = half.assessment
+    why, se = a.why.get(name), half.stderr.get(name)
+    if why is not None and not why.startswith("correlated:") or se is None:
         return False
-    if se is None:
+    if half.problem.spec(name).relative and se > abs(half.params[name]):
         return False
-    return not (half.problem.spec(name).relative and se > abs(half.params[name]))
+    if not size or a.correlation is None or name not in a.names:
+        return True
+    row = np.abs(np.nan_to_num(a.correlation[a.names.index(name)]))
+    row[a.names.index(name)] = 0.0
+    return float(np.max(row, initial=0.0)) <= VOTE_CORRELATION
 
 
 def unstable(data: Dataset, fit: FitResult, effect: str) -> str | None:
@@ -92,10 +103,11 @@ def unstable(data: Dataset, fit: FitResult, effect: str) -> str | None:
         first, second = _half_fits(data, fit, _halves(data.n))
     except (ValueError, FloatingPointError):
         return None  # a half too short to fit says nothing either way
+    centre = float(np.mean(data.columns["x"]))
     for name in EFFECTS[effect].keys:
-        if not (_holds(first, name) and _holds(second, name)):
+        size = name in EFFECTS[effect].size_keys
+        if not (_holds(first, name, size) and _holds(second, name, size)):
             continue  # only what both halves determine votes
-        centre = float(np.mean(data.columns["x"]))
         if not _agree(name, fit.problem.spec(name), first, second, centre):
             return (f"a stand-in for something outside the library: {name} takes "
                     f"{first.params[name]:.4g} in the first half of the record and "
