@@ -487,8 +487,11 @@ export function drawLive(gd, figure) {
   const background = figure.layout.plot_bgcolor ?? full.plot_bgcolor ?? "#fff";
   ctx.setTransform(1, 0, 0, 1, 0, 0);
   ctx.clearRect(0, 0, canvas.width, canvas.height);
-  ctx.drawImage(staticLayer(gd, { axes, size, font, background, width, height, ratio }), 0, 0);
+  const layout = { axes, size, font, background };
+  const layer = staticLayer(gd, layout, canvas);
+  if (layer) ctx.drawImage(layer, 0, 0);
   ctx.setTransform(ratio, 0, 0, ratio, 0, 0);
+  if (!layer) drawStatic(ctx, layout);
   const fontBefore = ctx.lastFont;
   ctx.save();
   ctx.beginPath();
@@ -510,33 +513,51 @@ export function drawLive(gd, figure) {
   return true;
 }
 
-/** Graph -> {key, canvas}: what does not move while only the data do (the plot area's
- *  background, the grid and zero lines, the tick labels), drawn once per set of axes.
- *  A hand on a slider mostly leaves the axes where they were (the mass, k, z*, and
- *  every plot a slider does not rescale); each such frame then copies this layer and
- *  strokes the traces, and the tick labels are neither laid out nor filled again. */
-const staticLayers = new WeakMap();
-
-function staticLayer(gd, { axes, size, font, background, width, height, ratio }) {
-  const key = JSON.stringify([width, height, ratio, size.l, size.t, size.w, size.h, background, font,
-    Object.values(axes).map((axis) => [axis.key, axis.range, axis.log, axis.style])]);
-  let layer = staticLayers.get(gd);
-  if (layer?.key === key) return layer.canvas;
-  layer ??= { canvas: document.createElement("canvas") };
-  layer.key = key;
-  staticLayers.set(gd, layer);
-  const { canvas } = layer;
-  canvas.width = Math.round(width * ratio);
-  canvas.height = Math.round(height * ratio);
-  const ctx = canvas.getContext("2d");
-  ctx.lastFont = null; // a canvas resized forgets its font
-  ctx.setTransform(ratio, 0, 0, ratio, 0, 0);
+/** The plot area's background, the grid and zero lines, the tick labels. */
+function drawStatic(ctx, { axes, size, font, background }) {
   ctx.fillStyle = background;
   ctx.fillRect(size.l, size.t, size.w, size.h);
   addTicks(axes);
   drawGrid(ctx, axes, size);
   drawLabels(ctx, axes, size, font);
-  return canvas;
+}
+
+/** Graph -> {key, canvas}: what does not move while only the data do (drawStatic),
+ *  kept on a canvas of its own once two frames in a row have the same axes. A hand on
+ *  a slider often leaves a plot's axes where they were (k, z*, the mass; the plots a
+ *  slider does not rescale); each such frame then copies this layer and strokes the
+ *  traces, the tick labels neither laid out nor filled again. A frame with new axes
+ *  draws them on the live canvas itself (a layer made for one frame costs more). */
+const staticLayers = new WeakMap();
+
+function staticLayer(gd, layout, live) {
+  const { axes, size, font, background } = layout;
+  const key = JSON.stringify([live.width, live.height, size.l, size.t, size.w, size.h, background, font,
+    Object.values(axes).map((axis) => [axis.key, axis.range, axis.log, axis.style])]);
+  const layer = staticLayers.get(gd) ?? { key: null, canvas: null, drawn: false };
+  staticLayers.set(gd, layer);
+  if (layer.key !== key) {
+    layer.key = key;
+    layer.drawn = false;
+    return null;
+  }
+  if (!layer.drawn) {
+    layer.canvas ??= document.createElement("canvas");
+    const { canvas } = layer;
+    const ctx = canvas.getContext("2d");
+    if (canvas.width !== live.width || canvas.height !== live.height) {
+      canvas.width = live.width;
+      canvas.height = live.height;
+      ctx.lastFont = null; // a resized canvas forgets its font
+    }
+    ctx.setTransform(1, 0, 0, 1, 0, 0);
+    ctx.clearRect(0, 0, canvas.width, canvas.height);
+    const ratio = window.devicePixelRatio || 1;
+    ctx.setTransform(ratio, 0, 0, ratio, 0, 0);
+    drawStatic(ctx, layout);
+    layer.drawn = true;
+  }
+  return layer.canvas;
 }
 
 /** The ranges and tick labels a live drawing of `figure` on `gd` uses (for tests). */
