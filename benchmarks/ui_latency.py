@@ -250,7 +250,9 @@ def main(argv=None) -> int:
                 report_keys(results, sliders, rows, title)
         browser.close()
     print()
-    out.table(["", *(label for label, _ in variants)], rows)
+    # a column per variant and CPU rate, in the order the rows' cells are
+    out.table(["", *(label if rate == 1 else f"{label}, CPU {rate:g}× slower"
+                     for rate in rates for label, _ in variants)], rows)
     out.note(f"Sliders: {', '.join(sliders)}; {args.presses} presses each; headless Chromium "
              f"at 1280×800; latency from the event to the frame that shows the value.")
     out.write()

@@ -14,7 +14,9 @@ import {
   COMP_PARAMS, LOOP_CONTROLS, compParams, loopError, loopSpec,
 } from "./loopstate.js";
 import { refresh, settleNow } from "../page/render.js";
-import { $, app, commit } from "../page/store.js";
+import {
+  $, app, commit, setAttr, setHidden, setText,
+} from "../page/store.js";
 
 /** Where each slider goes in the loop's fieldset. */
 const HOSTS = {
@@ -22,25 +24,27 @@ const HOSTS = {
   f: "reference", c: "compensation", u_max: "limit",
 };
 
+/** Written at every move of any slider (the friction's too): only what changes is
+ *  written, each write making the browser check the page's styles again. */
 function showError(name, message) {
   const error = $(`${name}-error`);
-  error.textContent = message ?? "";
-  error.hidden = !message;
-  $(name).setAttribute("aria-invalid", message ? "true" : "false");
+  setText(error, message ?? "");
+  setHidden(error, !message);
+  setAttr($(name), "aria-invalid", message ? "true" : "false");
   $(name).closest(".control").classList.toggle("invalid", Boolean(message));
 }
 
 /** Show the controls the state uses (a ramp has no h, a sine has f, …). */
 function showUsed(state) {
   for (const spec of LOOP_CONTROLS) {
-    if (spec.when) $(spec.name).closest(".control").hidden = !spec.when(state);
+    if (spec.when) setHidden($(spec.name).closest(".control"), !spec.when(state));
   }
   const fitted = Boolean(compParams(state));
   $("loop-comp-model").querySelector('option[value="fitted"]').disabled = !fitted;
-  $("loop-comp-model").closest(".control").hidden = state.comp === "off";
-  $("loop-comp-model-note").textContent = fitted
+  setHidden($("loop-comp-model").closest(".control"), state.comp === "off");
+  setText($("loop-comp-model-note"), fitted
     ? `the fitted model: ${paramList(COMP_PARAMS, state, { values: compParams(state) })}`
-    : "a fitted model comes from the data panel (Try this model in a control loop)";
+    : "a fitted model comes from the data panel (Try this model in a control loop)");
 }
 
 /** Write the loop's part of `state` into its controls (all but `except`). */

@@ -27,13 +27,16 @@ export function rateBand(p, fHat = p.F_hat) {
   const strength = new Array(POINTS);
   const up = (name) => ({ ...p, [name]: p[name] * Math.exp(STEP) });
   const down = (name) => ({ ...p, [name]: p[name] * Math.exp(-STEP) });
-  const moved = [up("V"), down("V"), up("delta"), down("delta")];
+  const [vUp, vDown, dUp, dDown] = [up("V"), down("V"), up("delta"), down("delta")];
   let peak = 0;
   for (let i = 0; i < POINTS; i += 1) {
     const k = centre * 10 ** (-DECADES + (2 * DECADES * i) / (POINTS - 1));
-    const [vUp, vDown, dUp, dDown] = moved.map((q) => breakawayForce(k, q, fHat));
+    // four forces at each of 1201 rates, every live frame of a moving V or δ: no array
+    // made per rate
+    const byV = (breakawayForce(k, vUp, fHat) - breakawayForce(k, vDown, fHat)) / (2 * STEP);
+    const byDelta = (breakawayForce(k, dUp, fHat) - breakawayForce(k, dDown, fHat)) / (2 * STEP);
     rates[i] = k;
-    strength[i] = Math.hypot((vUp - vDown) / (2 * STEP), (dUp - dDown) / (2 * STEP));
+    strength[i] = Math.sqrt(byV * byV + byDelta * byDelta);
     if (strength[i] > strength[peak]) peak = i;
   }
   if (!(strength[peak] > 0)) return null;

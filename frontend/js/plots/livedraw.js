@@ -113,6 +113,12 @@ function axesOf(gd, figure, traces) {
       style: axisStyle(full[key], figure.layout[key]),
     };
   }
+  return out;
+}
+
+/** The ticks of every axis of `axes` (axesOf) set on it: only the static layer and the
+ *  tests read them. */
+function addTicks(out) {
   // an axis laid over another takes its ticks where the other's are (tickmode "sync")
   for (const axis of Object.values(out)) {
     const under = axis.style.overlaying && out[axis.style.overlaying];
@@ -268,7 +274,91 @@ function markerPath(ctx, symbol, x, y, r) {
   }
 }
 
-function drawTrace(ctx, trace, axes, font) {
+/** Plotly's tolerance of a simplified line at pixel (x, y): `base` on the plot area,
+ *  growing off it (plotly.js scatter/line_points.js, toleranceGrowth 10). */
+function toleranceAt(x, y, base, size) {
+  const xFrac = (x - size.l) / size.w;
+  const yFrac = (y - size.t) / size.h;
+  const off = Math.max(0, -xFrac, xFrac - 1) + Math.max(0, -yFrac, yFrac - 1);
+  return (1 + 10 * off) * base;
+}
+
+/** Point `i` added to the path unless it is the last one added or the cluster's start;
+ *  the last point added. */
+function addPoint(ctx, px, py, i, drawn, first) {
+  if (i === drawn || i === first) return drawn;
+  ctx.lineTo(px[i], py[i]);
+  return i;
+}
+
+/**
+ * The points [start, end) of a line (pixels in `px`, `py`, all drawable) added to the
+ * path, simplified as Plotly simplifies its lines (plotly.js scatter/line_points.js):
+ * points that stay within the tolerance of one straight line collapse onto it, which
+ * keeps its ends and its farthest points either way along it. A curve of a thousand
+ * points becomes the few dozen segments Plotly draws, and a phone's processor strokes
+ * those rather than the thousand.
+ */
+function strokeRun(ctx, px, py, start, end, base, size) {
+  let first = start; // the cluster's start, drawn
+  ctx.moveTo(px[first], py[first]);
+  let drawn = first; // the last point added to the path
+  let i = first + 1;
+  while (i < end) {
+    const x0 = px[first];
+    const y0 = py[first];
+    let high = i;
+    const reach = Math.sqrt((px[high] - x0) ** 2 + (py[high] - y0) ** 2);
+    if (reach < toleranceAt(px[high], py[high], base, size)) {
+      i += 1;
+      continue;
+    }
+    const ux = (px[high] - x0) / reach;
+    const uy = (py[high] - y0) / reach;
+    let low = first;
+    let highVal = reach;
+    let lowVal = 0;
+    let minDev = 0;
+    let maxDev = 0;
+    let highFirst = false;
+    let last = high; // the cluster's end
+    let out = -1; // the first point off the cluster's line
+    for (i += 1; i < end; i += 1) {
+      const vx = px[i] - x0;
+      const vy = py[i] - y0;
+      const deviation = vx * uy - vy * ux;
+      minDev = Math.min(minDev, deviation);
+      maxDev = Math.max(maxDev, deviation);
+      if (maxDev - minDev > toleranceAt(px[i], py[i], base, size)) {
+        out = i;
+        break;
+      }
+      last = i;
+      const along = vx * ux + vy * uy;
+      if (along > highVal) {
+        highVal = along;
+        high = i;
+        highFirst = false;
+      } else if (along < lowVal) {
+        lowVal = along;
+        low = i;
+        highFirst = true;
+      }
+    }
+    drawn = addPoint(ctx, px, py, highFirst ? high : low, drawn, first);
+    drawn = addPoint(ctx, px, py, highFirst ? low : high, drawn, first);
+    drawn = addPoint(ctx, px, py, last, drawn, first);
+    if (out < 0) break;
+    ctx.lineTo(px[out], py[out]);
+    first = out;
+    drawn = out;
+    i = out + 1;
+  }
+  // points too close to the cluster's start to give it a direction end the run
+  if (drawn !== end - 1 && end - 1 !== first) ctx.lineTo(px[end - 1], py[end - 1]);
+}
+
+function drawTrace(ctx, trace, axes, font, size) {
   const xAxis = axes[trace.xaxis ?? "x"];
   const yAxis = axes[trace.yaxis ?? "y"];
   if (!xAxis || !yAxis) return;
@@ -297,38 +387,21 @@ function drawTrace(ctx, trace, axes, font) {
     ctx.lineWidth = width;
     ctx.strokeStyle = line.color ?? "#1f77b4";
     ctx.beginPath();
-    // a point within half a pixel of the last one drawn adds nothing to see (Plotly
-    // simplifies its lines too); the last point of a run is always drawn
-    let pen = false;
-    let lastX = 0; // the last point drawn
-    let lastY = 0;
-    let skipped = false; // a point passed over since, the last at (skipX, skipY)
-    let skipX = 0;
-    let skipY = 0;
+    const tolerance = Math.max(width, 3) / 4;
+    const px = new Float64Array(xs.length);
+    const py = new Float64Array(xs.length);
     for (let i = 0; i < xs.length; i += 1) {
-      const px = xs[i] == null ? NaN : xAxis.map(xs[i], true);
-      const py = ys[i] == null ? NaN : yAxis.map(ys[i], true);
-      if (!Number.isFinite(px) || !Number.isFinite(py)) {
-        if (skipped) ctx.lineTo(skipX, skipY);
-        pen = false;
-        skipped = false;
-      } else if (!pen) {
-        ctx.moveTo(px, py);
-        pen = true;
-        lastX = px;
-        lastY = py;
-      } else if (Math.abs(px - lastX) < 0.5 && Math.abs(py - lastY) < 0.5) {
-        skipped = true;
-        skipX = px;
-        skipY = py;
-      } else {
-        ctx.lineTo(px, py);
-        lastX = px;
-        lastY = py;
-        skipped = false;
-      }
+      px[i] = xs[i] == null ? NaN : xAxis.map(xs[i], true);
+      py[i] = ys[i] == null ? NaN : yAxis.map(ys[i], true);
     }
-    if (skipped) ctx.lineTo(skipX, skipY);
+    // each run of drawable points, up to a gap
+    for (let start = 0; start < xs.length;) {
+      while (start < xs.length && !(Number.isFinite(px[start]) && Number.isFinite(py[start]))) start += 1;
+      let end = start;
+      while (end < xs.length && Number.isFinite(px[end]) && Number.isFinite(py[end])) end += 1;
+      if (end > start) strokeRun(ctx, px, py, start, end, tolerance, size);
+      start = end;
+    }
     ctx.stroke();
     ctx.setLineDash([]);
   }
@@ -410,25 +483,28 @@ export function drawLive(gd, figure) {
     canvas.style.height = `${height}px`;
     ctx.lastFont = null; // a resized canvas forgets its font
   }
-  ctx.setTransform(ratio, 0, 0, ratio, 0, 0);
-  ctx.clearRect(0, 0, width, height);
   const font = { ...full.font, ...(figure.layout.font ?? {}) };
-  ctx.fillStyle = figure.layout.plot_bgcolor ?? full.plot_bgcolor ?? "#fff";
-  ctx.fillRect(size.l, size.t, size.w, size.h);
-  drawGrid(ctx, axes, size);
+  const background = figure.layout.plot_bgcolor ?? full.plot_bgcolor ?? "#fff";
+  ctx.setTransform(1, 0, 0, 1, 0, 0);
+  ctx.clearRect(0, 0, canvas.width, canvas.height);
+  const layout = { axes, size, font, background };
+  const layer = staticLayer(gd, layout, canvas);
+  if (layer) ctx.drawImage(layer, 0, 0);
+  ctx.setTransform(ratio, 0, 0, ratio, 0, 0);
+  if (!layer) drawStatic(ctx, layout);
   const fontBefore = ctx.lastFont;
   ctx.save();
   ctx.beginPath();
   ctx.rect(size.l, size.t, size.w, size.h);
   ctx.clip();
-  for (const trace of traces) drawTrace(ctx, trace, axes, font);
+  for (const trace of traces) drawTrace(ctx, trace, axes, font, size);
   ctx.restore();
   ctx.lastFont = fontBefore; // restore() brought back the font before the clip
-  drawLabels(ctx, axes, size, font);
   if (canvas.style.display) canvas.style.display = "";
   // the ranges drawn, for tests: a zoom must hold in the live frames too
-  canvas.dataset.ranges = JSON.stringify(Object.fromEntries(
+  const ranges = JSON.stringify(Object.fromEntries(
     Object.entries(axes).map(([id, axis]) => [id, axis.range])));
+  if (canvas.dataset.ranges !== ranges) canvas.dataset.ranges = ranges;
   if (!isLive(gd)) {
     cover(gd, true);
     gd.dataset.live = "true";
@@ -437,11 +513,58 @@ export function drawLive(gd, figure) {
   return true;
 }
 
+/** The plot area's background, the grid and zero lines, the tick labels. */
+function drawStatic(ctx, { axes, size, font, background }) {
+  ctx.fillStyle = background;
+  ctx.fillRect(size.l, size.t, size.w, size.h);
+  addTicks(axes);
+  drawGrid(ctx, axes, size);
+  drawLabels(ctx, axes, size, font);
+}
+
+/** Graph -> {key, canvas}: what does not move while only the data do (drawStatic),
+ *  kept on a canvas of its own once two frames in a row have the same axes. A hand on
+ *  a slider often leaves a plot's axes where they were (k, z*, the mass; the plots a
+ *  slider does not rescale); each such frame then copies this layer and strokes the
+ *  traces, the tick labels neither laid out nor filled again. A frame with new axes
+ *  draws them on the live canvas itself (a layer made for one frame costs more). */
+const staticLayers = new WeakMap();
+
+function staticLayer(gd, layout, live) {
+  const { axes, size, font, background } = layout;
+  const key = JSON.stringify([live.width, live.height, size.l, size.t, size.w, size.h, background, font,
+    Object.values(axes).map((axis) => [axis.key, axis.range, axis.log, axis.style])]);
+  const layer = staticLayers.get(gd) ?? { key: null, canvas: null, drawn: false };
+  staticLayers.set(gd, layer);
+  if (layer.key !== key) {
+    layer.key = key;
+    layer.drawn = false;
+    return null;
+  }
+  if (!layer.drawn) {
+    layer.canvas ??= document.createElement("canvas");
+    const { canvas } = layer;
+    const ctx = canvas.getContext("2d");
+    if (canvas.width !== live.width || canvas.height !== live.height) {
+      canvas.width = live.width;
+      canvas.height = live.height;
+      ctx.lastFont = null; // a resized canvas forgets its font
+    }
+    ctx.setTransform(1, 0, 0, 1, 0, 0);
+    ctx.clearRect(0, 0, canvas.width, canvas.height);
+    const ratio = window.devicePixelRatio || 1;
+    ctx.setTransform(ratio, 0, 0, ratio, 0, 0);
+    drawStatic(ctx, layout);
+    layer.drawn = true;
+  }
+  return layer.canvas;
+}
+
 /** The ranges and tick labels a live drawing of `figure` on `gd` uses (for tests). */
 export function liveAxes(gd, figure) {
   const shown = gd.data ?? [];
   const traces = figure.data.filter((trace, i) => (shown[i]?.visible ?? true) === true);
-  const axes = axesOf(gd, figure, traces);
+  const axes = addTicks(axesOf(gd, figure, traces));
   return Object.fromEntries(Object.entries(axes).map(([id, axis]) => [id, {
     range: axis.range, ticks: axis.ticks.map((tick) => [tick.value, tick.text]),
   }]));
