@@ -98,8 +98,11 @@ def test_set_points_cannot_show_s_or_a_drop_below_the_slowest_speed_held():
     notes = " ".join(plan["notes"])
     assert "The steady curve does not depend on the presliding scale s" in notes
     assert "below the slowest speed the rig holds (v_min = 50" in notes
-    # with s open over the range given, ramps cannot separate V from it: only the sine
-    assert notes.endswith("A sine plan would determine it.")
+    # set-points cannot reach the drop: the plan names the runs that can (presliding data:
+    # slow ramps, or a sine through reversals)
+    assert plan["notes"][-1].endswith("it needs presliding data (ramps at slow rates, whose "
+                                      "break-away speed goes far lower, or a sine through "
+                                      "reversals).")
 
 
 def test_a_force_limit_below_the_breakaway_level_yields_no_ramps():
