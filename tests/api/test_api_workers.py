@@ -521,12 +521,10 @@ def test_a_shutdown_ends_every_worker_and_leaks_nothing(servers, tmp_path, sig, 
     wait_status(get, cancelled, {"cancelled"}, 5)
     running = orjson.loads(server.post_file("/api/fit/jobs", LONG, "long.csv")[1])["id"]
     wait_status(get, running, {"running"}, 30)
-    # the simulation worker, the upload reader and a fit worker: the cancelled fit's
-    # process is ending (on a loaded machine that takes a moment)
-    deadline = time.monotonic() + 30
-    while len(spawned(server.process.pid)) != 3 and time.monotonic() < deadline:
-        time.sleep(0.1)
-    assert len(spawned(server.process.pid)) == 3
+    # the simulation worker, the upload reader and the fit slots' processes: the
+    # cancelled fit's ended, and the running fit may have been handed that slot (a fresh
+    # process) while the first fit's stays idle in the other: one or two
+    assert 3 <= len(spawned(server.process.pid)) <= 4
     code, log = server.shut_down(sig, group)
     # uvicorn shuts down in order, then raises a SIGTERM again to end with it
     assert code == (0 if sig == signal.SIGINT else -signal.SIGTERM)
