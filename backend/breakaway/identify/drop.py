@@ -22,7 +22,6 @@ with the bound the data set.
 
 from __future__ import annotations
 
-import math
 
 import numpy as np
 
