@@ -22,7 +22,6 @@ with the bound the data set.
 
 from __future__ import annotations
 
-
 import numpy as np
 
 from ..steady import stribeck_kernel
