@@ -120,6 +120,9 @@ def indistinguishable_from(fit, keys, H) -> str | None:
     if H is None or fit.jac is None:
         return None
     J = np.asarray(fit.jac, dtype=float)
+    if fit.problem.data.weights is not None:
+        # the Jacobian is of the weighted residuals: the allowance is weighted alike
+        H = H * np.sqrt(fit.problem.data.weights)[:, None]
     names = list(fit.problem.names)
     for key in keys:
         if key not in names:

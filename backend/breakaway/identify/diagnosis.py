@@ -140,10 +140,20 @@ def _diagnose(data: Dataset, progress, set_aside: SetAside | None = None,
     noise = replace(noise, command=is_command(full_problem, noise, base.residual()))
     report(0.1, "screening candidate effects")
 
-    # what x's resolution sets through the base model, row by row
-    errors = screen_base.problem.resolution_errors(screen_base.params) \
+    # what x's resolution sets through the base model, row by row: every fit from here
+    # on weighs each row by the inverse of its error's variance
+    weights = input_weights(screen_base.problem.resolution_errors(screen_base.params), noise) \
         if data.kind == "timeseries" else None
-    search = Selection(screen, noise.value, report, input_weights(errors, noise))
+    if weights is not None:
+        screen_base = refit(replace(screen, weights=weights), screen_base)
+        if screened:
+            data = replace(data, weights=input_weights(
+                full_problem.resolution_errors(base.params), noise))
+            base = refit(data, screen_base, max_nfev=FULL_REFIT_EVALUATIONS)
+        else:
+            data, base = screen_base.problem.data, screen_base
+        screen = screen_base.problem.data
+    search = Selection(screen, noise.value, report, weights)
     available = []
     for effect, why in availability(screen_base.problem).items():
         if why is None:

@@ -41,7 +41,7 @@ class FitResult:
     rmse : float
         Root mean square of measured − predicted F over the fitted rows [N].
     bic : float
-        ``n·ln(RSS/n) + p·ln(n)``.
+        ``n·ln(RSS/n) + p·ln(n)``, RSS weighted by the rows' weights (:func:`row_scales`).
     n : int
         Rows fitted.
     prediction : numpy.ndarray
@@ -49,8 +49,9 @@ class FitResult:
     theta : numpy.ndarray
         The solution in the fit's coordinates (:meth:`Problem.to_theta`).
     jac : numpy.ndarray or None
-        Jacobian of the fitted rows' residuals with respect to ``theta`` at the
-        solution, shape (n, p); what a held-out refit starts from (:mod:`.heldout`).
+        Jacobian of the fitted rows' weighted residuals (:func:`row_scales`) with
+        respect to ``theta`` at the solution, shape (n, p); what a held-out refit starts
+        from (:mod:`.heldout`).
         None for records longer than :data:`KEEP_JACOBIAN_ROWS`, which are never
         searched on every row (they are screened on blocks).
     rows : numpy.ndarray
@@ -140,8 +141,20 @@ def effect_starts(problem: Problem, effect: str, current: dict, residual: np.nda
 # ---------------------------------------------------------------------------------
 
 
+def row_scales(data: Dataset, rows) -> np.ndarray | float:
+    """What each of ``rows``' residuals is multiplied by in a fit: the square root of
+    its weight (:attr:`~.csvdata.Dataset.weights`), or 1 where every row counts alike.
+
+    A row whose predicted force x's resolution makes uncertain (just after a reversal,
+    where (E6') is steep, or where an encoder's count is a large share of the presliding
+    distance) has a larger error variance than the force's noise; weighted by the
+    inverse of that variance, the fit is the maximum-likelihood one, and such rows no
+    longer pull the Stribeck levels and the viscous term towards a reading of x."""
+    return 1.0 if data.weights is None else np.sqrt(data.weights[rows])
+
+
 def _cost(problem, params, rows):
-    r = problem.predict(params)[rows] - problem.measured[rows]
+    r = (problem.predict(params)[rows] - problem.measured[rows]) * row_scales(problem.data, rows)
     value = float(np.dot(r, r))
     return value if math.isfinite(value) else math.inf
 
@@ -153,8 +166,10 @@ def _solve(problem, theta0, rows, max_nfev):
     span = hi - lo
     theta0 = np.clip(theta0, lo + 1e-9 * span, hi - 1e-9 * span)
 
+    scales = row_scales(problem.data, rows)
+
     def residual(theta):
-        r = problem.predict(problem.to_params(theta))[rows] - problem.measured[rows]
+        r = (problem.predict(problem.to_params(theta))[rows] - problem.measured[rows]) * scales
         return np.where(np.isfinite(r), r, 1e6 * problem.scales.force)
 
     return least_squares(residual, theta0, bounds=(lo, hi), method="trf", x_scale="jac",
@@ -223,7 +238,8 @@ def fit_model(data: Dataset, effects=(), starts=None, rows=None, max_nfev=None,
     params = problem.to_params(best.x)
     prediction = problem.predict(params)
     r = problem.measured[rows] - prediction[rows]
-    rss = float(np.dot(r, r))
+    weighted = r * row_scales(data, rows)
+    rss = float(np.dot(weighted, weighted))
     order = smooth_order(problem, rows)
     assessment = assess(problem, best.x, best.jac, best.cost, n, best.active_mask,
                         best.fun, order)
@@ -234,7 +250,8 @@ def fit_model(data: Dataset, effects=(), starts=None, rows=None, max_nfev=None,
             if level in problem.names:
                 for field in (assessment.stderr, assessment.determined, assessment.why):
                     field[low] = field[level]
-    return FitResult(problem.effects, params, math.sqrt(rss / n),
+    # the RMSE is the plain one the report shows; the BIC is the weighted fit's
+    return FitResult(problem.effects, params, math.sqrt(float(np.dot(r, r)) / n),
                      bic(rss, n, len(problem.names)), n, prediction, problem, assessment,
                      best.x, best.jac if n <= KEEP_JACOBIAN_ROWS else None, rows)
 
@@ -364,4 +381,4 @@ def _evaluated_at(data, effects, params, rows, kin):
 
 
 __all__ = ["FitError", "FitResult", "base_starts", "best_base_starts", "bic", "effect_starts",
-           "family", "fit_model", "fit_with_effect", "refit"]
+           "family", "fit_model", "fit_with_effect", "refit", "row_scales"]

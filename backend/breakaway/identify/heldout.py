@@ -29,7 +29,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .fitting import FitResult, refit
+from .fitting import FitResult, refit, row_scales
 
 #: Blocks a record is cut into (at least 5; fewer only for very short records).
 BLOCKS = 10
@@ -114,7 +114,10 @@ def heldout_error(fit: FitResult, blocks) -> HeldOut:
     free = (theta0 > lo + 1e-9 * span) & (theta0 < hi - 1e-9 * span)
     measured = problem.measured
     n = measured.size
-    start = _residual(problem, theta0, measured)
+    # the refit minimises what the fit did: the rows' weighted residuals (the Jacobian
+    # is theirs); each row's held-out residual is given unweighted
+    scales = row_scales(problem.data, np.arange(n))
+    start = _residual(problem, theta0, measured) * scales
     held = np.empty(n)
     for block in blocks:
         keep = np.ones(n, dtype=bool)
@@ -133,7 +136,7 @@ def heldout_error(fit: FitResult, blocks) -> HeldOut:
             for _ in range(HALVINGS + 1):
                 moved = theta.copy()
                 moved[free] = np.clip(theta[free] + step, lo[free], hi[free])
-                r_moved = _residual(problem, moved, measured)
+                r_moved = _residual(problem, moved, measured) * scales
                 if np.all(np.isfinite(r_moved)) and \
                         np.dot(r_moved[keep], r_moved[keep]) < np.dot(r[keep], r[keep]):
                     break
@@ -141,7 +144,7 @@ def heldout_error(fit: FitResult, blocks) -> HeldOut:
             else:
                 break  # no shorter step helps: keep the better point
             theta, r = moved, r_moved
-        held[block] = r[block]
+        held[block] = _residual(problem, theta, measured)[block]
     return HeldOut(held, list(blocks))
 
 

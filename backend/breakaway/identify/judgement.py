@@ -5,7 +5,8 @@ stroke, an inertia at every acceleration). So it is judged by how well it predic
 rows it was not fitted to, block by block (:mod:`.heldout`):
 
 1. the BIC on all rows falls by at least :data:`MIN_BIC_DROP` per added effect (very
-   strong evidence, Kass & Raftery 1995) and the RMSE by :data:`MIN_RMSE_GAIN`; the
+   strong evidence, Kass & Raftery 1995) and the RMSE (rows weighted as in the fit) by
+   :data:`MIN_RMSE_GAIN`; the
    rows count as independent observations in units of the correlation time of what the
    candidate leaves (a misfit that moves over many rows is one observation, not many);
 2. the effect's size is determined by the fit (at least one of its size parameters, by
@@ -140,11 +141,13 @@ class Judge:
         if not drop >= MIN_BIC_DROP * len(new):
             return Verdict(f"the BIC falls by {drop:.1f}{beside}, less than the "
                            f"{MIN_BIC_DROP * len(new):g} required", allowance=kept)
-        # an effect worth naming changes the fit visibly: the plain RMSE, not one
-        # relative to what an allowance leaves
-        if trial.rmse > (1 - MIN_RMSE_GAIN) * current.rmse:
-            return Verdict(f"the RMSE falls by only {100 * (1 - trial.rmse / current.rmse):.2g} %"
-                           f", from {current.rmse:.4g} to {trial.rmse:.4g} "
+        # an effect worth naming changes the fit visibly: the RMSE the fit minimises
+        # (rows weighted as in the fit), not one relative to what an allowance leaves
+        before, after = self._rms(current.residual()), self._rms(trial.residual())
+        if after > (1 - MIN_RMSE_GAIN) * before:
+            weighted = " (rows weighted as in the fit)" if self.weights is not None else ""
+            return Verdict(f"the RMSE{weighted} falls by only {100 * (1 - after / before):.2g} %"
+                           f", from {before:.4g} to {after:.4g} "
                            f"{self.data.unit('N')}", allowance=kept)
         reason, h0, h1 = self.compare(current, trial, H)
         return Verdict(reason and reason + beside, h1.rmse, h0.rmse, kept, twin)
@@ -162,7 +165,7 @@ class Judge:
         reason = None
         if not float(np.sum(gain)) > 0:
             total = self._total(r0.size)
-            weighted = " (rows weighted by how surely x's resolution lets them be predicted)" \
+            weighted = " (rows weighted as in the fit)" \
                 if self.weights is not None else ""
             reason = (f"the held-out error{weighted} rises from "
                       f"{math.sqrt(np.sum(before) / total):.4g} to "
@@ -190,6 +193,10 @@ class Judge:
     def _weighted(self, r) -> float:
         """The squared error of residuals ``r``, rows weighted."""
         return float(np.sum(r**2 if self.weights is None else self.weights * r**2))
+
+    def _rms(self, r) -> float:
+        """The root mean square of residuals ``r``, rows weighted."""
+        return math.sqrt(self._weighted(r) / self._total(r.size))
 
     def _block_sse(self, r, blocks) -> np.ndarray:
         r2 = r**2 if self.weights is None else self.weights * r**2

@@ -128,6 +128,11 @@ class Dataset:
     segments : tuple of int
         Row indices where an independent record starts after the first (a time series
         screened in blocks); empty for a file.
+    weights : numpy.ndarray or None
+        Each row's weight in a fit, the inverse of its prediction variance relative to
+        the force's (set by the diagnosis where x's resolution makes some rows' force
+        uncertain, :func:`~breakaway.identify.noise.input_weights`); None, the parser's
+        value: every row counts alike.
     """
 
     kind: str
@@ -138,6 +143,7 @@ class Dataset:
     lines: np.ndarray
     meta_lines: dict[str, int] = field(default_factory=dict, repr=False)
     segments: tuple[int, ...] = ()
+    weights: np.ndarray | None = field(default=None, repr=False)
 
     @property
     def rotary(self) -> bool:
