@@ -72,8 +72,12 @@ def viscous_or_detection(passing, trials, has_s: bool):
     return named, other, warning("indistinguishable", other, text)
 
 
-#: ``viscous`` is ``viscous-power`` at n = 1: never in one model.
-EXCLUSIVE = {"viscous": "viscous-power", "viscous-power": "viscous"}
+#: Pairs never in one model: ``viscous`` is ``viscous-power`` at n = 1; an offset
+#: beside an asymmetry adds a fifth parameter to four sliding and stiction levels (a
+#: direction's levels move with the offset), so that only the virgin branch of the first
+#: stroke could tell their sum apart.
+EXCLUSIVE = {"viscous": "viscous-power", "viscous-power": "viscous",
+             "offset": "asymmetry", "asymmetry": "offset"}
 #: ``viscous-power`` is named only when n is this many standard errors from 1.
 POWER_SIGMAS = 3.0
 

@@ -130,7 +130,7 @@ class Selection:
         return current, current_heldout
 
     def _exclude_partner(self, effect, remaining):
-        """``viscous`` and ``viscous-power`` are never in one model."""
+        """The effect never in one model with ``effect`` (:data:`.indistinguishable.EXCLUSIVE`) is tried no more."""
         partner = EXCLUSIVE.get(effect)
         if partner in remaining:
             remaining.remove(partner)
