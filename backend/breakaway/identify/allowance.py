@@ -83,7 +83,7 @@ def basis(problem, dependences) -> np.ndarray | None:
     d = problem.d.astype(float)
     columns = []
     for dependence in dependences:
-        hats = _hats(np.asarray(variables[variable_of(dependence)], dtype=float))
+        hats = hat_functions(np.asarray(variables[variable_of(dependence)], dtype=float))
         columns.append(hats * d[:, None] if dependence.startswith(SIGNED) else hats)
     H = np.column_stack(columns)
     levels = np.column_stack([np.ones_like(d), d])
@@ -94,7 +94,7 @@ def basis(problem, dependences) -> np.ndarray | None:
     return H[:, kept] / norms[kept]
 
 
-def _hats(u) -> np.ndarray:
+def hat_functions(u) -> np.ndarray:
     """Piecewise-linear hat functions on :data:`KNOTS` quantile knots of ``u``."""
     knots = np.unique(np.quantile(u, np.linspace(0.0, 1.0, KNOTS)))
     if knots.size < 2:

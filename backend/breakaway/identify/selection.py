@@ -306,6 +306,11 @@ class Selection:
                 heldout = held.rmse
                 if worse or unstable(self.data, trial, candidate):
                     continue
+                # a rival with more parameters must earn them against the model it
+                # would replace, as in :meth:`_parsimonious`
+                if len(EFFECTS[candidate].keys) > len(EFFECTS[effect].keys) and \
+                        self.judgement.judge(current, trial).reason:
+                    continue
                 if candidate == "viscous-power" and effect == "viscous" and not \
                         power_is_preferred(trial, current, heldout, current_heldout)[0]:
                     continue
