@@ -29,8 +29,11 @@ _QUANTUM_SHARE = 0.05
 #: The fewest decimals tried when reading the printed resolution of a column.
 _MAX_DECIMALS = 12
 #: A step this many printed units or more is the data's own (an encoder's count), not
-#: the logger's digits, however fast the values change.
-_PRINTED_STEPS = 3
+#: the logger's digits, however fast the values change: rounding to the printed digits
+#: leaves values on every unit, never on every second one only (a 2 µm scale or a
+#: 20 µm count logged in m sits on every second unit of the finest power of ten its
+#: values share).
+_PRINTED_STEPS = 2
 #: Gaps within this factor of the smallest are steps of one count.
 _ONE_STEP = 1.5
 #: Gaps up to these many steps refine the step before every gap is counted.
@@ -104,7 +107,7 @@ def quantum(values) -> float:
     on_grid = np.abs(levels - (offset + q * counts)) <= tolerance
     if np.mean(on_grid) < 0.98:
         return 0.0
-    if q >= (_PRINTED_STEPS - 1e-6) * unit:  # (3 units, up to the float error of q)
+    if q >= (_PRINTED_STEPS - 1e-6) * unit:  # (2 units, up to the float error of q)
         return float(q)  # a grid coarser than the digits: the data's own step
     # a grid of the printed digits themselves counts only where it is coarse
     changes = np.abs(np.diff(values))
