@@ -213,7 +213,8 @@ def assess(problem, theta, jac, cost, n, active_mask=None, residual=None,
             reason = "relative"
         else:
             others = [j for j in range(p) if j != i and not flat[j]
-                      and np.isfinite(corr[i, j]) and abs(corr[i, j]) > MAX_CORRELATION]
+                      and np.isfinite(corr[i, j]) and abs(corr[i, j]) > MAX_CORRELATION
+                      and not _power_law(problem, name, names[j])]
             if others:
                 j = others[0]
                 reason = f"correlated:{names[j]}"
@@ -225,6 +226,12 @@ def assess(problem, theta, jac, cost, n, active_mask=None, residual=None,
         why[name] = reason
     return Assessment(stderr, determined, why, bound, correlated, tuple(names), corr,
                       gap_stderr)
+
+
+def _power_law(problem, a: str, b: str) -> bool:
+    """Whether ``a`` and ``b`` are the exponent and the scale of one power law, whose
+    correlation is the unit's, not the data's (:attr:`~.effects.Param.exponent_of`)."""
+    return problem.spec(a).exponent_of == b or problem.spec(b).exponent_of == a
 
 
 __all__ = ["Assessment", "MAX_CORRELATION", "MAX_RELATIVE_ERROR", "assess", "block_covariance",

@@ -46,6 +46,12 @@ class Param:
         Switches the model discretely: profiled on a grid, not moved by the Jacobian.
     relative : bool
         Its relative standard error means something (not for an angle).
+    exponent_of : str or None
+        The exponent of a power law whose scale is ``params[exponent_of]`` (n of
+        σ·|v|ⁿ): the two's correlation depends on the unit of the base (σ is the value
+        at |v| = 1 of the file's unit), and referred to a speed inside the data it is
+        zero, so it never makes either undetermined
+        (:func:`~breakaway.identify.identifiability.assess`).
     """
 
     name: str
@@ -55,6 +61,7 @@ class Param:
     gap_of: str | None = None
     profiled: bool = False
     relative: bool = True
+    exponent_of: str | None = None
 
 
 def _level(sc):

@@ -33,7 +33,7 @@ class ViscousPower(Effect):
     kinds = ("timeseries", "steady")
     off = {"sigma": 0.0}
     params = (Param("sigma", "N·(s/m)^n", _sigma_bounds),
-              Param("n", "", lambda sc: EXPONENT_BOUNDS))
+              Param("n", "", lambda sc: EXPONENT_BOUNDS, exponent_of="sigma"))
     description = "friction rising with speed along a curve, σ·sgn(v)·|v|ⁿ"
     regressor = {"timeseries": "v", "steady": "v"}
 
