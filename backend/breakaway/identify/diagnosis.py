@@ -142,13 +142,14 @@ def _diagnose(data: Dataset, progress, set_aside: SetAside | None = None,
 
     # what x's resolution sets through the base model, row by row: every fit from here
     # on weighs each row by the inverse of its error's variance
-    weights = input_weights(screen_base.problem.resolution_errors(screen_base.params), noise) \
+    weights = input_weights(screen_base.problem.resolution_errors(screen_base.params),
+                            noise.value) \
         if data.kind == "timeseries" else None
     if weights is not None:
         screen_base = refit(replace(screen, weights=weights), screen_base)
         if screened:
             data = replace(data, weights=input_weights(
-                full_problem.resolution_errors(base.params), noise))
+                full_problem.resolution_errors(base.params), noise.value))
             base = refit(data, screen_base, max_nfev=FULL_REFIT_EVALUATIONS)
         else:
             data, base = screen_base.problem.data, screen_base

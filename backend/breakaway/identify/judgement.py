@@ -43,6 +43,7 @@ from .effects import EFFECTS
 from .fitting import FitResult, smooth_order
 from .heldout import HeldOut, heldout_blocks, heldout_error
 from .identifiability import correlation_time
+from .noise import input_weights
 from .warnings.beyond_data import beyond_data
 
 #: A BIC drop of 10 is "very strong" evidence (Kass & Raftery 1995).
@@ -186,8 +187,7 @@ class Judge:
             return self.base_weights
         if id(current) not in self._weights:
             errors = current.problem.resolution_errors(current.params)
-            floor = max(self.noise, 1e-12 * float(np.max(errors)))
-            self._weights[id(current)] = (current, floor**2 / (floor**2 + errors**2))
+            self._weights[id(current)] = (current, input_weights(errors, self.noise))
         return self._weights[id(current)][1]
 
     def _weighted(self, r) -> float:

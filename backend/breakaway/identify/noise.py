@@ -270,16 +270,20 @@ def input_floor(fit, noise: NoiseFloor) -> float:
     return float(min(value, room))
 
 
-def input_weights(errors, noise: NoiseFloor) -> np.ndarray | None:
-    """Each row's weight in a judgement of candidates, ``σ²/(σ² + e_i²)``: σ the noise
-    floor, e_i the row's force error [N] that x's resolution sets
+def input_weights(errors, noise: float) -> np.ndarray | None:
+    """Each row's weight in a fit and a judgement, ``σ²/(σ² + e_i²)``: e_i the row's
+    force error [N] that x's resolution sets
     (:meth:`~.models.timeseries.TimeseriesProblem.resolution_errors`: large just after
-    reversals, where (E6') is steep). A gain where the input makes the prediction
-    uncertain counts for less: it may be the reading of x, not friction. None where x is
-    exact (every weight 1)."""
+    reversals, where (E6') is steep), σ the noise floor ``noise`` [N], or the median
+    row's e_i where that is larger. A row where the input makes the prediction
+    uncertain counts for less: its error may be the reading of x, not friction; the
+    weights single out such rows, so that at least half of the record keeps half its
+    weight (a force with no noise of its own, a command, would otherwise hand the whole
+    fit to the few rows where x's reading does not matter). None where x is exact
+    (every weight 1)."""
     if errors is None or not np.any(errors > 0):
         return None
-    floor = max(noise.value, 1e-12 * float(np.max(errors)))
+    floor = max(noise, float(np.median(errors)), 1e-12 * float(np.max(errors)))
     return floor**2 / (floor**2 + np.square(errors))
 
 
