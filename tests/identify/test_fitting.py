@@ -49,6 +49,25 @@ def test_stribeck_level_never_below_coulomb():
     assert 0.05 <= fit.params["delta"] <= 10.0
 
 
+def test_rows_of_small_weight_do_not_pull_the_fit():
+    # rows whose error is large (x's reading, say) are given a small weight: the fit
+    # is the one the other rows make, and the plain RMSE still covers every row
+    from dataclasses import replace
+    data, truth = make_dataset("steady", (), seed=6, noise=0.0)
+    F = data.columns["F"].copy()
+    spoiled = np.arange(data.n) % 5 == 0
+    F[spoiled] += 0.3 * truth["Fc"] * np.sign(data.columns["v"][spoiled])
+    bent = replace(data, columns={**data.columns, "F": F})
+    plain = fit_model(bent)
+    weighted = fit_model(replace(bent, weights=np.where(spoiled, 1e-8, 1.0)))
+    assert abs(plain.params["Fc"] / truth["Fc"] - 1) > 0.02
+    for name, value in truth.items():
+        assert weighted.params[name] == pytest.approx(value, rel=1e-3), name
+    assert weighted.rmse == pytest.approx(
+        np.sqrt(np.mean((F - weighted.prediction) ** 2)), rel=1e-9)
+    assert weighted.bic < plain.bic  # the weighted sum of squares
+
+
 def test_rows_subset_predicts_every_row():
     data, _ = make_dataset("timeseries", (), seed=5, n=3000)
     fit = fit_model(data, rows=np.arange(2400))

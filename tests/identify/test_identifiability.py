@@ -68,3 +68,24 @@ def test_every_value_in_a_rotary_reports_words_carries_its_unit(joint_in_degrees
                 continue
             for quoted in re.finditer(rf"(?<![\w·]){re.escape(name)} = ([-\d.e+]+)( \S+)?", text):
                 assert quoted.group(2) and quoted.group(2).strip(" ,;:)") == unit, (name, text)
+
+
+def test_a_power_laws_scale_and_exponent_do_not_make_each_other_undetermined():
+    # speeds of 5–500 (σ is the curve's value at the unit speed): σ and n move together
+    # with a correlation above 0.99, which referring σ to a speed inside the data would
+    # make zero; n and σ are determined by their own standard errors
+    import numpy as np
+
+    rng = np.random.default_rng(1)
+    speeds = np.geomspace(5.0, 500.0, 15)
+    v = np.concatenate([speeds, -speeds])
+    F = np.sign(v) * (2.0 + 0.5 * np.abs(v) ** 0.5) + 0.01 * rng.standard_normal(v.size)
+    lines = ["v [m/s],F [N]"] + [f"{a:.6g},{b:.6f}" for a, b in zip(v, F)]
+    data = parse_csv("\n".join(lines).encode())
+    fit = fit_with_effect(data, fit_model(data), "viscous-power")
+    a = fit.assessment
+    r = a.correlation[a.names.index("n"), a.names.index("sigma")]
+    assert abs(r) > 0.99
+    assert fit.determined["n"] and fit.determined["sigma"]
+    assert fit.params["n"] == pytest.approx(0.5, abs=4 * fit.stderr["n"])
+    assert fit.params["sigma"] == pytest.approx(0.5, abs=4 * fit.stderr["sigma"])

@@ -55,6 +55,17 @@ def test_degrees_printed_then_converted_to_rad_are_still_a_step(counts_per_turn)
     assert quantum(rad) == pytest.approx(np.deg2rad(count_deg), rel=1e-3)
 
 
+@pytest.mark.parametrize("count", [2e-6, 2e-5, 5e-6])
+def test_a_step_of_two_or_five_printed_units_is_the_data_s_own(strokes, count):
+    # a 2 µm or 5 µm scale, a 20 µm count, logged in m with seven decimals: the finest
+    # power of ten every value sits on is 1e-6 or 1e-5, and the values sit on every
+    # second (fifth) one only, which rounding to the printed digits never does
+    _, x = strokes
+    logged = np.round(np.round(x / count) * count, 7)
+    assert printed_unit(logged) < count
+    assert quantum(logged) == pytest.approx(count, rel=1e-6)
+
+
 def test_printed_unit_and_a_continuous_column():
     rng = np.random.default_rng(2)
     walk = np.cumsum(rng.standard_normal(5000)) * 1e-3

@@ -10,7 +10,7 @@ import pytest
 
 from breakaway.identify import identify
 from breakaway.identify.fitting import fit_model
-from breakaway.identify.noise import estimate, input_floor, is_command
+from breakaway.identify.noise import estimate, input_floor, input_weights, is_command
 
 from . import cases
 
@@ -25,6 +25,23 @@ def test_an_encoders_steps_do_not_raise_the_noise_floor(count):
     assert 0.0 <= report["input_floor"] <= math.sqrt(
         max(report["error_after"] ** 2 - report["noise_floor"] ** 2, 0.0)) + 1e-12
     assert report["effects"] == []
+
+
+def test_weights_single_out_the_rows_that_x_s_reading_makes_uncertain():
+    rng = np.random.default_rng(0)
+    # an encoder's counts: most rows' force does not depend on the count (sliding);
+    # those after a reversal do, and count for less than the noise floor's rows
+    counted = np.where(rng.random(1000) < 0.1, rng.uniform(0.5, 2.0, 1000), 0.0)
+    weights = input_weights(counted, 0.1)
+    np.testing.assert_allclose(weights[counted == 0], 1.0)
+    assert np.all(weights[counted > 0] < 0.04)
+    # x read with continuous noise under a noise-free force: every row has some error,
+    # and the fit is not handed to the one row that has the least
+    continuous = rng.uniform(0.01, 0.2, 1000)
+    weights = input_weights(continuous, 1e-9)
+    assert np.mean(weights >= 0.5) >= 0.5
+    assert np.min(weights) > 0.01
+    assert input_weights(np.zeros(10), 0.1) is None  # exact x
 
 
 def test_a_coarser_encoder_sets_more_of_the_error():

@@ -8,8 +8,9 @@ import pytest
 
 from breakaway.identify import diagnose, parse_csv, report
 from breakaway.identify.effects import EFFECTS
-from breakaway.identify.fitting import fit_model, fit_with_effect
+from breakaway.identify.fitting import fit_model, fit_with_effect, refit
 from breakaway.identify.judgement import Judge
+from breakaway.identify.selection import Selection
 from breakaway.identify.synthetic import NOISE, _dataset, make_dataset, with_force
 from breakaway.presliding import motion_direction, presliding_force_from_target
 from breakaway.steady import stribeck_magnitude
@@ -178,3 +179,19 @@ def test_a_half_that_holds_sigma_only_loosely_does_not_refuse_it():
     r = report(diagnose(parse_csv(recording.csv)))
     assert r["effects"] == ["viscous"]
     assert r["final"]["params"]["sigma"] == pytest.approx(recording.truth["sigma"], rel=0.1)
+
+
+@pytest.mark.parametrize("truth,first", [({}, "offset"),
+                                         ({"Fc_neg": 8.0, "Fs_neg": 14.0}, "asymmetry")])
+def test_an_asymmetry_must_earn_its_second_level_against_an_offset(truth, first):
+    # an offset moves both directions' levels alike: an asymmetry fits it as well with a
+    # second Stribeck level, and offered first (a lower BIC over every row, on a real
+    # record) it must pass the verdict against the offset; a direction difference of its
+    # own does
+    effects = ("offset",) if not truth else ("asymmetry",)
+    data, _ = make_dataset("timeseries", effects, seed=3, n=6000, params=truth or None)
+    base = fit_model(data)
+    trials = {e: refit(data, fit_with_effect(data, base, e)) for e in ("asymmetry", "offset")}
+    search = Selection(data, NOISE["timeseries"], lambda fraction, message: None)
+    assert search._parsimonious(["asymmetry", "offset"], trials)[0] == first
+
