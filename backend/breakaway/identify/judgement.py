@@ -6,7 +6,7 @@ rows it was not fitted to, block by block (:mod:`.heldout`):
 
 1. the BIC on all rows falls by at least :data:`MIN_BIC_DROP` per added effect (very
    strong evidence, Kass & Raftery 1995) and the RMSE (rows weighted as in the fit) by
-   :data:`MIN_RMSE_GAIN`; the
+   :data:`MIN_RMSE_GAIN`, the plain RMSE not rising; the
    rows count as independent observations in units of the correlation time of what the
    candidate leaves (a misfit that moves over many rows is one observation, not many);
 2. the effect's size is determined by the fit (at least one of its size parameters, by
@@ -145,6 +145,10 @@ class Judge:
         # an effect worth naming changes the fit visibly: the RMSE the fit minimises
         # (rows weighted as in the fit), not one relative to what an allowance leaves
         before, after = self._rms(current.residual()), self._rms(trial.residual())
+        if trial.rmse > current.rmse:
+            # rows weighted alike, the error a reader sees must not rise either
+            return Verdict(f"the RMSE rises from {current.rmse:.4g} to {trial.rmse:.4g} "
+                           f"{self.data.unit('N')}", allowance=kept)
         if after > (1 - MIN_RMSE_GAIN) * before:
             weighted = " (rows weighted as in the fit)" if self.weights is not None else ""
             return Verdict(f"the RMSE{weighted} falls by only {100 * (1 - after / before):.2g} %"
