@@ -32,10 +32,6 @@ KNOWN_GAPS = {
                              "20-bit encoder's x leaves at each ramp's corner, through a "
                              "presliding stiffness of ~1e4 N·m/rad; the input floor's draws "
                              "do not hold that bias",
-    ("servo-axis", 1): "unexplained false: the final RMSE is 1.296 times what the noise and "
-                       "x's resolution set, just under the 1.3 the flag needs: the input "
-                       "floor now holds what the counts make of m_e·a; the presliding "
-                       "misfit outside the library is still named in residual_structure",
 }
 
 

@@ -31,12 +31,6 @@ STEADY = ("gearbox-steady", "offset-steady", "flat-steady")
 #: issue 26 still gets wrong on the seeds tested here; benchmarks/realistic.py gives the
 #: figures on seeds never used while developing.
 KNOWN_GAPS: dict[tuple[str, int], str] = {
-    ("coarse-encoder", 0): "Fc 11 % high and σ 27 % low on a 10-count encoder: the level "
-                           "and the slope trade where the speeds are read from few counts",
-    ("coarse-encoder-spikes", 0): "as coarse-encoder seed 0: Fc 11 % high, σ 27 % low",
-    ("servo-command", 0): "viscous-power (n = 0.41) named on a linear σ 60 times smaller "
-                          "than the one fitted: the curve takes a misfit of the DAC's "
-                          "command, Fc 27 % low",
     ("estimated-torque", 0): "ripple named beside a model-based torque estimate; noise "
                              "floor 3x below the estimate's noise; Fc 15 % low",
     ("seal-drift", 0): "asymmetry named: the stiction peaks of the two directions sit at "
@@ -44,16 +38,12 @@ KNOWN_GAPS: dict[tuple[str, int], str] = {
                        "differs (drift found, α within 25 %)",
     ("seal-pressure", 0): "as seal-drift seed 0 (asymmetry named); the offset's 1.3 % "
                           "RMSE gain under the 3 % required",
-    ("gearbox-steady", 1): "n = 2.43 correlated with σ, so viscous is named, σ 3x the "
-                           "truth's",
     ("gearbox-timeseries", 0): "viscous-power refused: its fit takes Fc to 0 with n = "
                                "0.67 (truth 0.31), so linear viscous leaves Fc 80 % high",
     ("gearbox-coarse-spikes", 0): "Fc 39 % high, n = 0.51 (truth 0.31): the level and "
                                   "the curve trade on a coarse encoder",
     ("short-viscous", 0): "viscous refused: the BIC falls by 3.3 beside the allowance for "
                           "the record's other dependences",
-    ("hand-moved-hum-spikes", 0): "asymmetry named where the truth is an offset (offset "
-                                  "60 % high, σ 3x low)",
 }
 
 

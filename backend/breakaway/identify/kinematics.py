@@ -55,7 +55,7 @@ def printed_unit(values) -> float:
     return 0.0
 
 
-def quantum(values) -> float:
+def quantum(values, printed: float | None = None) -> float:
     """The fixed step ``q`` that every value of ``values`` sits on, or 0.
 
     Each gap between neighbouring distinct values is read as a whole number of steps
@@ -68,6 +68,11 @@ def quantum(values) -> float:
     ----------
     values : array_like
         One column [any unit].
+    printed : float, optional
+        The unit of the last digit the column was printed with, read from the file's
+        text (:attr:`~.csvdata.Dataset.printed`); else the coarsest power of ten every
+        value sits on (:func:`printed_unit`), which a step of 1 µm logged in m with
+        seven decimals cannot tell from digits printed to 1e-6.
 
     Returns
     -------
@@ -101,7 +106,7 @@ def quantum(values) -> float:
     q, offset = np.polyfit(counts, levels, 1)
     if not q > 0:
         return 0.0
-    unit = max(printed_unit(values), _rounding_unit(one_step))
+    unit = max(printed_unit(values) if printed is None else printed, _rounding_unit(one_step))
     # printed to a unit finer than the step, each value is off the grid by its rounding
     tolerance = max(0.05 * q, 0.6 * unit) if unit < 0.5 * q else 0.05 * q
     on_grid = np.abs(levels - (offset + q * counts)) <= tolerance

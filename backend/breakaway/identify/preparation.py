@@ -19,7 +19,7 @@ def subset(data: Dataset, rows, segments=()) -> Dataset:
     return Dataset(kind=data.kind, columns={k: v[rows] for k, v in data.columns.items()},
                    meta=data.meta, n=int(rows.size), ignored_columns=data.ignored_columns,
                    lines=data.lines[rows], meta_lines=data.meta_lines,
-                   segments=tuple(segments),
+                   segments=tuple(segments), printed=data.printed,
                    weights=None if data.weights is None else data.weights[rows])
 
 

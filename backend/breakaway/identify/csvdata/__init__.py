@@ -192,9 +192,31 @@ def parse_csv(data: bytes | str, kind: str | None = None, max_bytes: int = DEFAU
         ignored_columns=ignored,
         lines=line_no,
         meta_lines=meta_lines,
+        printed=_printed_units(rows, cells, used, index),
     )
     _validate_meta(dataset)
     return dataset
+
+
+#: Rows whose text is read for the digits each column was printed with.
+PRINTED_SAMPLE = 2000
+
+
+def _printed_units(rows, cells, used, index) -> dict[str, float]:
+    """The unit of the last printed digit of each column (the most decimals over up to
+    :data:`PRINTED_SAMPLE` rows spread over the file); none for a column with a value in
+    exponent notation."""
+    step = max(1, len(rows) // PRINTED_SAMPLE)
+    sample = [cells[r] if cells is not None else rows[r].split(",")
+              for r in range(0, len(rows), step)]
+    units = {}
+    for name in used:
+        texts = [row[index[name]].strip() for row in sample]
+        if not texts or any("e" in text or "E" in text for text in texts):
+            continue
+        decimals = max(len(text) - text.index(".") - 1 if "." in text else 0 for text in texts)
+        units[name] = 10.0 ** -decimals
+    return units
 
 
 def _validate_meta(dataset: Dataset) -> None:

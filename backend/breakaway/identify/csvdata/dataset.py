@@ -128,6 +128,11 @@ class Dataset:
     segments : tuple of int
         Row indices where an independent record starts after the first (a time series
         screened in blocks); empty for a file.
+    printed : dict of str to float
+        The unit of the last digit each column was printed with (1e-7 for
+        ``0.0000120``), read from the file's text; a column written in exponent notation
+        has none. A position that sits on a grid coarser than its printed digits carries
+        the grid as its own step (:func:`~breakaway.identify.kinematics.quantum`).
     weights : numpy.ndarray or None
         Each row's weight in a fit, the inverse of its prediction variance relative to
         the force's (set by the diagnosis where x's resolution makes some rows' force
@@ -143,6 +148,7 @@ class Dataset:
     lines: np.ndarray
     meta_lines: dict[str, int] = field(default_factory=dict, repr=False)
     segments: tuple[int, ...] = ()
+    printed: dict[str, float] = field(default_factory=dict, repr=False)
     weights: np.ndarray | None = field(default=None, repr=False)
 
     @property

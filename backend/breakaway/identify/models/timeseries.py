@@ -56,15 +56,16 @@ class TimeseriesProblem(Problem):
         self.F0 = data.meta_float("f0", 0.0)
         cached = _KINEMATICS.get(data)
         if cached is None:
-            cached = _KINEMATICS[data] = self._kinematics()
+            cached = _KINEMATICS[data] = self._kinematics(data.printed.get("x"))
         self.__dict__.update(cached)
         super().__init__(data, effects, fixed, ties)
 
-    def _kinematics(self) -> dict:
-        """What every model of this record shares; computed once per dataset."""
+    def _kinematics(self, printed_x: float | None) -> dict:
+        """What every model of this record shares; computed once per dataset
+        (``printed_x``: the unit of x's last printed digit, if known)."""
         #: quantisation step and noise std of x (0: none), its resolution, and the
         #: reversal hysteresis: direction changes within a few resolutions are not real
-        self.quantum_x = quantum(self.recorded_x)
+        self.quantum_x = quantum(self.recorded_x, printed_x)
         self.noise_x = position_noise(self.recorded_x) if self.quantum_x == 0 else 0.0
         self.resolution_x = max(self.quantum_x, self.noise_x)
         self.hysteresis = REVERSAL_STEPS * self.resolution_x
