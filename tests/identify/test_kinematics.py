@@ -66,6 +66,25 @@ def test_a_step_of_two_or_five_printed_units_is_the_data_s_own(strokes, count):
     assert quantum(logged) == pytest.approx(count, rel=1e-6)
 
 
+def test_a_one_micrometre_scale_logged_with_seven_decimals_is_a_step(strokes):
+    # the values sit on every 1e-6, as digits printed to 1e-6 would: only the file's
+    # text, printed to 1e-7, tells the scale's step from the logger's rounding
+    from breakaway.identify import parse_csv
+    from breakaway.identify.models import problem_for
+
+    t, x = strokes
+    x = 100 * x  # fast strokes: many counts between samples
+    rng = np.random.default_rng(0)
+    counts = np.round(x / 1e-6)
+    rows = [f"{a:.4f},{c * 1e-6:.7f},{10 * np.sign(b) + 0.1 * rng.standard_normal():.4f}"
+            for a, c, b in zip(t, counts, np.gradient(x))]
+    data = parse_csv("t [s],x [m],F [N]\n" + "\n".join(rows))
+    assert data.printed["x"] == pytest.approx(1e-7)
+    assert printed_unit(data.columns["x"]) == pytest.approx(1e-6)
+    assert problem_for(data).quantum_x == pytest.approx(1e-6, rel=1e-6)
+    assert quantum(data.columns["x"]) == 0.0  # the digits alone cannot tell
+
+
 def test_printed_unit_and_a_continuous_column():
     rng = np.random.default_rng(2)
     walk = np.cumsum(rng.standard_normal(5000)) * 1e-3

@@ -31,7 +31,7 @@ from threadpoolctl import threadpool_limits
 from .csvdata import Dataset
 from .effects import availability
 from .fitting import FitResult, fit_model, refit
-from .models import problem_for
+from .models import problem_for, with_weights
 from .drop import drop_bound_text, unresolved_drop, without_drop
 from .noise import (NoiseFloor, estimate, input_floor, input_weights, is_command,
                     programmed_force)
@@ -146,9 +146,9 @@ def _diagnose(data: Dataset, progress, set_aside: SetAside | None = None,
                             noise.value) \
         if data.kind == "timeseries" else None
     if weights is not None:
-        screen_base = refit(replace(screen, weights=weights), screen_base)
+        screen_base = refit(with_weights(screen, weights), screen_base)
         if screened:
-            data = replace(data, weights=input_weights(
+            data = with_weights(data, input_weights(
                 full_problem.resolution_errors(base.params), noise.value))
             base = refit(data, screen_base, max_nfev=FULL_REFIT_EVALUATIONS)
         else:

@@ -116,7 +116,7 @@ def heldout_error(fit: FitResult, blocks) -> HeldOut:
     n = measured.size
     # the refit minimises what the fit did: the rows' weighted residuals (the Jacobian
     # is theirs); each row's held-out residual is given unweighted
-    scales = row_scales(problem.data, np.arange(n))
+    scales = np.broadcast_to(row_scales(problem.data, np.arange(n)), (n,))
     start = _residual(problem, theta0, measured) * scales
     held = np.empty(n)
     for block in blocks:
@@ -144,7 +144,7 @@ def heldout_error(fit: FitResult, blocks) -> HeldOut:
             else:
                 break  # no shorter step helps: keep the better point
             theta, r = moved, r_moved
-        held[block] = _residual(problem, theta, measured)[block]
+        held[block] = r[block] / scales[block]
     return HeldOut(held, list(blocks))
 
 

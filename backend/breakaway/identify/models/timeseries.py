@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import weakref
+from dataclasses import replace
 
 import numpy as np
 from scipy.ndimage import uniform_filter1d
@@ -36,6 +37,15 @@ SHORT_SMOOTHING = 13
 HELD_SPEED_PERCENTILE = 10
 #: Samples averaged before the direction of a noisy x is read.
 NOISY_X_WINDOW = 21
+
+
+def with_weights(data, weights):
+    """``data`` with its rows weighted in a fit (:attr:`~..csvdata.Dataset.weights`),
+    sharing the record's kinematics (the weights change no v, a or reversal)."""
+    weighted = replace(data, weights=weights)
+    if data in _KINEMATICS:
+        _KINEMATICS[weighted] = _KINEMATICS[data]
+    return weighted
 
 
 class TimeseriesProblem(Problem):
