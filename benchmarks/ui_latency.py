@@ -15,7 +15,11 @@ mid-range phone), the throttled run beside the plain one.
 - slow keys: the same, at a person's uneven pace: 200–700 ms apart (seeded uniform), so
   that the settled Plotly drawing runs between presses and a press may land on it.
 - drag: 2 s of `input` events at 60 per second (a pointer dragging the slider) that
-  move it back and forth over up to 100 positions, then `change` (the release).
+  move it back and forth over up to 100 positions, then `change` (the release). The
+  events keep the clock's time, as a pointer's do whatever the page is doing: a page
+  that falls behind finds several waiting, and draws the last. (Each event once timed
+  from the one before, a page busy for 40 ms a frame was given 25 events a second and
+  no more, and its frames per second measured that pace, not the page.)
 
 The plots a slider's frames count are scrolled into view first, as a person watches
 them (a plot out of view is drawn live only when it comes into view). A frame counts
@@ -106,8 +110,9 @@ async ({name: slider, mode, presses, gaps, seconds, hz}) => {
     const span = Math.min(100, Math.floor((range.max - range.min) / 4));
     const reach = start + span <= Number(range.max) ? span : -span;
     range.dispatchEvent(new PointerEvent('pointerdown', {bubbles: true}));
+    const begin = performance.now();
     for (let i = 1; i <= count; i++) {
-      await sleep(1000 / hz);
+      await sleep(begin + (i * 1000) / hz - performance.now());
       // there and back: a triangle over the drag
       const phase = i / count;
       const offset = Math.round(reach * (phase < 0.5 ? 2 * phase : 2 - 2 * phase));
