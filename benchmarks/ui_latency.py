@@ -1,7 +1,7 @@
 """The explorer at the speed of a hand: input to plots showing the new value, in the page.
 
     .venv/bin/python benchmarks/ui_latency.py [--presses N] [--sliders Fc,Fs,...] [--only keys,slow,drag]
-                                              [--throttle 1,4]
+                                              [--throttle 1,4] [--ab REF [--rounds N]]
 
 Headless Chromium, 1280×800, the default page (the ramp and the simulation on). Events
 come from timers in the page, so their spacing is the page's, not Playwright's. Every
@@ -15,7 +15,11 @@ mid-range phone), the throttled run beside the plain one.
 - slow keys: the same, at a person's uneven pace: 200–700 ms apart (seeded uniform), so
   that the settled Plotly drawing runs between presses and a press may land on it.
 - drag: 2 s of `input` events at 60 per second (a pointer dragging the slider) that
-  move it back and forth over up to 100 positions, then `change` (the release).
+  move it back and forth over up to 100 positions, then `change` (the release). The
+  events keep the clock's time, as a pointer's do whatever the page is doing: a page
+  that falls behind finds several waiting, and draws the last. (Each event once timed
+  from the one before, a page busy for 40 ms a frame was given 25 events a second and
+  no more, and its frames per second measured that pace, not the page.)
 
 The plots a slider's frames count are scrolled into view first, as a person watches
 them (a plot out of view is drawn live only when it comes into view). A frame counts
@@ -29,6 +33,14 @@ from the last input to the frame showing its value. The obvious alternative runs
 same session: every input drawn by `Plotly.react` as it comes
 (`window.breakaway.live(false)`: no live canvas, no waiting for the hand to rest).
 
+A/B (`--ab REF`): the frontend of git revision REF (A) against the working tree's (B),
+each served by its own server, in the same run; no Plotly.react column. On this shared
+two-core machine the load beside a run moves its figures as much as a change of a few
+milliseconds does, so runs one after the other cannot show such a change: here both
+pages stay open and take turns slider by slider (A then B, then B then A), so the load
+falls on both alike, for `--rounds` rounds. The report gives each round's figures and
+their median and spread; nothing is written to the docs.
+
 Goal (issue 21): p50 ≤ 16 ms and p95 ≤ 33 ms for every slider, either way, keys or
 pointer; during a drag ≥ 30 frames per second and the last value shown ≤ 50 ms after the
 last input. Goal (issue 27), the CPU throttled 4×: key presses p50 ≤ 16 ms and p95 ≤ 33 ms,
@@ -40,7 +52,12 @@ from __future__ import annotations
 
 import argparse
 import random
+import statistics
+import subprocess
 import sys
+import tarfile
+import tempfile
+from pathlib import Path
 
 from bench_explorer import load_average, machine, pct
 from bench_page import Server, launch
@@ -93,8 +110,9 @@ async ({name: slider, mode, presses, gaps, seconds, hz}) => {
     const span = Math.min(100, Math.floor((range.max - range.min) / 4));
     const reach = start + span <= Number(range.max) ? span : -span;
     range.dispatchEvent(new PointerEvent('pointerdown', {bubbles: true}));
+    const begin = performance.now();
     for (let i = 1; i <= count; i++) {
-      await sleep(1000 / hz);
+      await sleep(begin + (i * 1000) / hz - performance.now());
       // there and back: a triangle over the drag
       const phase = i / count;
       const offset = Math.round(reach * (phase < 0.5 ? 2 * phase : 2 - 2 * phase));
@@ -152,6 +170,21 @@ def run_variant(page, sliders, mode, args) -> dict:
             "name": name, "mode": "keys" if mode in ("keys", "slow") else "drag",
             "presses": args.presses, "gaps": gaps, "seconds": 2, "hz": 60})
     return out
+
+
+def open_page(browser, url, setup, rate):
+    """The default page at 1280×800, ready, `setup` run in it, its CPU slowed `rate`×."""
+    page = browser.new_page(viewport={"width": 1280, "height": 800})
+    page.set_default_timeout(600_000)
+    page.goto(f"{url}/")
+    page.evaluate("window.breakaway.rampReady()")
+    page.evaluate("window.breakaway.simReady()")
+    for script in setup:
+        page.evaluate(script)
+    if rate != 1:
+        cdp = page.context.new_cdp_session(page)
+        cdp.send("Emulation.setCPUThrottlingRate", {"rate": rate})
+    return page
 
 
 def fmt(values, q) -> str:
@@ -213,10 +246,15 @@ def main(argv=None) -> int:
     parser.add_argument("--only", default="keys,slow,drag")
     parser.add_argument("--throttle", default="1,4",
                         help="CPU slow-down factors to run at (1: the machine's speed)")
+    parser.add_argument("--ab", metavar="REF",
+                        help="A/B: the frontend of git revision REF against the working tree's")
+    parser.add_argument("--rounds", type=int, default=3, help="A/B: rounds of alternated runs")
     args = parser.parse_args(argv)
     sliders = args.sliders.split(",")
     rates = [float(rate) for rate in args.throttle.split(",")]
     print(f"Machine: {machine()}; load average at the start {load_average()}")
+    if args.ab:
+        return ab_main(args, sliders, rates)
     from playwright.sync_api import sync_playwright
 
     variants = (("the page (live frames)", []),
@@ -228,16 +266,7 @@ def main(argv=None) -> int:
             results = {}
             for rate in rates:
                 for label, setup in variants:
-                    page = browser.new_page(viewport={"width": 1280, "height": 800})
-                    page.set_default_timeout(600_000)
-                    page.goto(f"{server.url}/")
-                    page.evaluate("window.breakaway.rampReady()")
-                    page.evaluate("window.breakaway.simReady()")
-                    for script in setup:
-                        page.evaluate(script)
-                    if rate != 1:
-                        cdp = page.context.new_cdp_session(page)
-                        cdp.send("Emulation.setCPUThrottlingRate", {"rate": rate})
+                    page = open_page(browser, server.url, setup, rate)
                     results[label if rate == 1 else f"{label}, CPU {rate:g}× slower"] = \
                         run_variant(page, sliders, mode, args)
                     page.close()
@@ -257,6 +286,88 @@ def main(argv=None) -> int:
              f"at 1280×800; latency from the event to the frame that shows the value.")
     out.write()
     return 0
+
+
+def frontend_at(ref: str, into: Path) -> Path:
+    """The frontend folder of git revision `ref`, written under `into`."""
+    root = Path(__file__).resolve().parents[1]
+    archive = subprocess.run(["git", "archive", ref, "frontend"], cwd=root, check=True,
+                             capture_output=True).stdout
+    with tempfile.TemporaryFile() as fh:
+        fh.write(archive)
+        fh.seek(0)
+        with tarfile.open(fileobj=fh) as tar:
+            tar.extractall(into, filter="data")
+    return into / "frontend"
+
+
+def spread(values, unit="") -> str:
+    """Median [min–max] of one figure over rounds."""
+    return (f"{statistics.median(values):.1f} [{min(values):.1f}–{max(values):.1f}]{unit}"
+            if values else "–")
+
+
+def ab_main(args, sliders, rates) -> int:
+    """Revision `args.ab`'s frontend (A) against the working tree's (B), alternated."""
+    from playwright.sync_api import sync_playwright
+
+    labels = (f"A {args.ab}", "B working tree")
+    modes = args.only.split(",")
+    # figures[mode][label, rate] -> one dict per round
+    figures = {mode: {(label, rate): [] for label in labels for rate in rates} for mode in modes}
+    with tempfile.TemporaryDirectory() as tmp, Server(frontend_at(args.ab, Path(tmp))) as a_server, \
+            Server() as b_server, sync_playwright() as playwright:
+        browser = launch(playwright)
+        urls = dict(zip(labels, (a_server.url, b_server.url)))
+        for round_ in range(args.rounds):
+            for mode in modes:
+                for rate in rates:
+                    pages = {label: open_page(browser, urls[label], [], rate) for label in labels}
+                    runs = {label: {} for label in labels}
+                    for i, name in enumerate(sliders):
+                        # A then B, then B then A: neither always runs first
+                        for label in (labels if (i + round_) % 2 == 0 else labels[::-1]):
+                            pages[label].bring_to_front()
+                            runs[label] |= run_variant(pages[label], [name], mode, args)
+                    for label in labels:
+                        pages[label].close()
+                        figures[mode][label, rate].append(round_figures(runs[label], mode))
+                print(f"round {round_ + 1}, {mode} (load average {load_average()}):")
+                for (label, rate), rounds in figures[mode].items():
+                    print(f"   {label:>24s} CPU {rate:g}×: {describe(rounds[-1], mode)}")
+        browser.close()
+    print(f"\nMedian [min–max] over {args.rounds} rounds (load average at the end {load_average()}):")
+    for mode in modes:
+        for (label, rate), rounds in figures[mode].items():
+            if mode == "drag":
+                line = (f"frames/s: median of sliders {spread([r['fps'] for r in rounds])}, "
+                        f"slowest slider {spread([r['fps_min'] for r in rounds])}; "
+                        f"p50 {spread([r['p50'] for r in rounds], ' ms')}")
+            else:
+                line = (f"p50 {spread([r['p50'] for r in rounds], ' ms')}, "
+                        f"p95 {spread([r['p95'] for r in rounds], ' ms')}")
+            print(f"   {mode:5s} {label:>24s} CPU {rate:g}×: {line}")
+    return 0
+
+
+def round_figures(run: dict, mode: str) -> dict:
+    """One round's figures of one variant: every slider's presses or drags pooled."""
+    if mode == "drag":
+        drags = [drag_figures(one) for one in run.values()]
+        every = [ms for figures in drags for ms in figures["latencies"]]
+        fps = [figures["fps"] for figures in drags]
+        return {"fps": statistics.median(fps), "fps_min": min(fps), "p50": pct(every, .5),
+                "per_slider": dict(zip(run, fps))}
+    every = [ms for one in run.values() for _, ms in key_latencies(one)]
+    return {"p50": pct(every, .5), "p95": pct(every, .95), "count": len(every)}
+
+
+def describe(figures: dict, mode: str) -> str:
+    if mode == "drag":
+        return (f"frames/s median {figures['fps']:.1f}, slowest {figures['fps_min']:.1f} ("
+                + ", ".join(f"{name} {fps:.0f}" for name, fps in figures["per_slider"].items())
+                + f"); p50 {figures['p50']:.1f} ms")
+    return f"p50 {figures['p50']:.1f} ms, p95 {figures['p95']:.1f} ms ({figures['count']} presses)"
 
 
 if __name__ == "__main__":
