@@ -127,6 +127,21 @@ def _power_fit(n, se, bic, rmse, rows=400):
                            assessment=SimpleNamespace(why=why))
 
 
+def test_a_curve_that_barely_bends_is_named_straight():
+    from breakaway.identify.indistinguishable import power_is_preferred
+
+    # n = 1.08 ± 0.02 is 4 standard errors from 1 (how an encoder's counts bend v can
+    # make that on a straight viscous term), but the curve lowers the RMSE by 0.15 %
+    power = _power_fit(1.08, 0.02, bic=-9000.0, rmse=0.06490)
+    viscous = _power_fit(1.0, None, bic=-8980.0, rmse=0.06500)
+    preferred, why = power_is_preferred(power, viscous, 0.0650, 0.0651)
+    assert not preferred and "lowers the RMSE by only 0.15 %" in why
+    # the same exponent with a visible gain is a curve
+    preferred, why = power_is_preferred(power, _power_fit(1.0, None, -8980.0, 0.0680),
+                                        0.0650, 0.0681)
+    assert preferred, why
+
+
 def test_a_heldout_error_below_the_fits_own_does_not_speak_for_that_fit():
     from breakaway.identify.indistinguishable import power_is_preferred
 
