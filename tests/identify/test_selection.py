@@ -120,7 +120,7 @@ def test_a_lag_crowded_after_reversals_stands_in_for_the_presliding_shape():
 def _power_fit(n, se, bic, rmse, rows=400):
     from types import SimpleNamespace
 
-    data = SimpleNamespace(unit=lambda linear: linear)
+    data = SimpleNamespace(unit=lambda linear: linear, weights=None)
     why = {"n": None if se is not None else "at-bound"}
     return SimpleNamespace(params={"n": n}, stderr={"n": se}, determined={"n": se is not None},
                            bic=bic, rmse=rmse, n=rows, problem=SimpleNamespace(data=data),

@@ -153,6 +153,16 @@ def row_scales(data: Dataset, rows) -> np.ndarray | float:
     return 1.0 if data.weights is None else np.sqrt(data.weights[rows])
 
 
+def weighted_rmse(fit: "FitResult") -> float:
+    """``fit``'s root mean square residual with its rows weighted as in the fit
+    (:func:`row_scales`; the plain RMSE where every row counts alike) [N]."""
+    weights = fit.problem.data.weights
+    if weights is None:
+        return fit.rmse
+    r = fit.residual()
+    return math.sqrt(float(np.sum(weights * r**2)) / float(np.sum(weights)))
+
+
 def _cost(problem, params, rows):
     r = (problem.predict(params)[rows] - problem.measured[rows]) * row_scales(problem.data, rows)
     value = float(np.dot(r, r))
@@ -381,4 +391,4 @@ def _evaluated_at(data, effects, params, rows, kin):
 
 
 __all__ = ["FitError", "FitResult", "base_starts", "best_base_starts", "bic", "effect_starts",
-           "family", "fit_model", "fit_with_effect", "refit", "row_scales"]
+           "family", "fit_model", "fit_with_effect", "refit", "row_scales", "weighted_rmse"]

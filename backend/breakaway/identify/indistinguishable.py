@@ -6,6 +6,7 @@ from __future__ import annotations
 import math
 
 from .effects import EFFECTS, param_spec, viscous_equivalent_of_detection
+from .fitting import weighted_rmse
 from .judgement import MIN_BIC_DROP, MIN_RMSE_GAIN
 from .warnings import warning
 
@@ -112,13 +113,14 @@ def power_is_preferred(power, viscous, heldout_power: float,
             return False, (f"its exponent n = {n:.3g} ± {se:.2g} is within {POWER_SIGMAS:g} "
                            f"standard errors of 1, where it is viscous")
         spread = f"± {se:.2g}"
-    if viscous is not None and power.rmse > (1 - MIN_RMSE_GAIN) * viscous.rmse:
+    curved, straight = (weighted_rmse(power), weighted_rmse(viscous)) \
+        if viscous is not None else (0.0, 0.0)
+    if curved > (1 - MIN_RMSE_GAIN) * straight:
         # the curve's exponent is a parameter like an effect's: worth naming where it
         # changes the fit visibly (n = 1.07 ± 0.02, from how a 1 µm scale's counts
-        # bend v, is a straight line to any reader)
+        # bend v, is a straight line to any reader); rows weighted as in the fit
         return False, (f"n = {n:.3g} {spread}, but the curve lowers the RMSE by only "
-                       f"{100 * (1 - power.rmse / viscous.rmse):.2g} % against the "
-                       f"straight line's")
+                       f"{100 * (1 - curved / straight):.2g} % against the straight line's")
     if viscous is not None and not power.bic < viscous.bic:
         return False, (f"n = {n:.3g} {spread}, but the BIC prefers viscous "
                        f"({viscous.bic:.1f} against {power.bic:.1f})")
