@@ -150,7 +150,9 @@ def _diagnose(data: Dataset, progress, set_aside: SetAside | None = None,
         if screened:
             data = with_weights(data, input_weights(
                 full_problem.resolution_errors(base.params), noise.value))
-            base = refit(data, screen_base, max_nfev=FULL_REFIT_EVALUATIONS)
+            # the weighted base on every row: the screened solution, evaluated (a
+            # polish on every row moves it little and costs a Jacobian per step)
+            base = _evaluate(data, screen_base)
         else:
             data, base = screen_base.problem.data, screen_base
         screen = screen_base.problem.data
