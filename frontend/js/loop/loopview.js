@@ -81,7 +81,10 @@ function showNumbers(result, state) {
   const key = keyOf(state);
   const current = !viewResult("loop", state)?.stale;
   const cached = current ? whatifs.cache.get(key) : null;
-  const wanted = current && Object.keys(whatIfStates(state, result)).length > 0;
+  // an invalid state (a value typed out of range) is drawn from the last valid answer,
+  // and its variants are never sent: the server would refuse them
+  const valid = !Object.keys(validate(state)).length;
+  const wanted = valid && current && Object.keys(whatIfStates(state, result)).length > 0;
   const sentence = $("loop-explain");
   sentence.textContent = explainLoop(result, state, cached ?? null, wanted && !cached);
   sentence.dataset.whatifs = cached || !wanted ? "done" : "pending";
@@ -126,11 +129,19 @@ function askWhatIfs(state, result, key) {
   if (whatifs.key === key) return;
   cancelWhatIfs();
   whatifs.key = key;
+  // the page's state object changes in place as the hand types on: the variants are of
+  // the state as it was drawn
+  const drawn = { ...state };
   whatifs.timer = setTimeout(async () => {
     whatifs.timer = null;
+    if (keyOf(shownState()) !== key) {
+      // the page moved on while the timer waited (on a loaded machine, past an edit)
+      whatifs.key = null;
+      return;
+    }
     const controller = new AbortController();
     whatifs.controller = controller;
-    const variants = whatIfStates(state, result);
+    const variants = whatIfStates(drawn, result);
     try {
       const run = async (body) => (await localLoop(body))
         ?? postJSON("/api/loop", body, controller.signal);
