@@ -156,7 +156,7 @@ def _diagnose(data: Dataset, progress, set_aside: SetAside | None = None,
         else:
             data, base = screen_base.problem.data, screen_base
         screen = screen_base.problem.data
-    search = Selection(screen, noise.value, report, weights)
+    search = Selection(screen, noise.value, report)
     available = []
     for effect, why in availability(screen_base.problem).items():
         if why is None:

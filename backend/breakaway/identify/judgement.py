@@ -68,13 +68,13 @@ class Verdict:
 class Judge:
     """The judgements of one search on one dataset (held-out errors computed once)."""
 
-    def __init__(self, data, noise: float, weights=None):
+    def __init__(self, data, noise: float):
         self.data = data
         self.noise = noise  # the noise floor [N]
-        #: each row's weight under the base model (:func:`.noise.input_weights`), or
-        #: None for all equal
-        self.base_weights = weights
-        self.weights = weights
+        #: each row's weight under the base model, as in the fits (the data's
+        #: :attr:`~.csvdata.Dataset.weights`), or None for all equal
+        self.base_weights = data.weights
+        self.weights = data.weights
         self._weights: dict = {}
         self._blocks = None
         self._heldout: dict = {}

@@ -56,11 +56,11 @@ class Candidate:
 class Selection:
     """The state of one search: the data, the gates' verdicts, the steps taken."""
 
-    def __init__(self, data: Dataset, noise: float, report, weights=None):
+    def __init__(self, data: Dataset, noise: float, report):
         self.data = data
         self.noise = noise
         self.report = report
-        self.judgement = Judge(data, noise, weights)
+        self.judgement = Judge(data, noise)
         self.restarts = best_base_starts(data)
         self.verdicts: dict[str, Candidate] = {}
         self.warnings: list[dict] = []
