@@ -23,7 +23,8 @@ import { getJSON } from "./page/api.js";
 import {
   PARAMS, buildControls, controlLabel, paramList, paramSpec, setParams, writeControls,
 } from "./page/controls.js";
-import { fitReady, fitReport, initDataPanel } from "./datapanel/datapanel.js";
+import { initDataPanel } from "./datapanel/datapanel.js";
+import { fitReady, fitReport } from "./datapanel/panelstate.js";
 import { explorerParams, measuredOverlay } from "./datapanel/fitparams.js";
 import { setState, wireControls } from "./page/inputs.js";
 import { wireIntro } from "./teaching/intro.js";

@@ -173,7 +173,7 @@ def test_the_live_frame_keeps_a_zoom_and_a_hidden_trace(explorer):
 #: Plotly's own range and tick labels of each axis of each plot, and the live drawing's
 #: for the same figure.
 AXES = """async () => {
-  const { liveAxes } = await import('/js/plots/livedraw.js');
+  const { liveAxes } = await import('/js/plots/liveaxes.js');
   const out = [];
   for (const gd of document.querySelectorAll('#plots .js-plotly-plot')) {
     const mine = liveAxes(gd, {data: gd.data, layout: gd.layout});

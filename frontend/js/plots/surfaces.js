@@ -6,7 +6,8 @@
 // A graph shows the settled drawing except between a live frame and the next settle.
 
 import { drawFigure, onResized } from "./draw.js";
-import { clearLive, drawLive, isLive } from "./livedraw.js";
+import { drawLive } from "./livedraw.js";
+import { clearLive, isLive } from "./livelayers.js";
 
 const drawn = {}; // plot id -> {data, layoutKey} the graph was last drawn with by Plotly
 const drawnLive = {}; // plot id -> the figure its live canvas shows
