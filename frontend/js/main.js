@@ -162,7 +162,9 @@ window.breakaway = {
   live: (on) => { app.liveOn = Boolean(on); },
   /** How long a hand must rest before the settled drawing [ms]. */
   settleMs: SETTLE_MS,
-  /** Counts: Plotly.react calls (`reacts`), plots drawn live on their canvas (`live`). */
+  /** Counts: Plotly.react calls (`reacts`), plots drawn live on their canvas (`live`),
+   *  of those copied from a frame painted ahead (`ahead`), frames painted ahead
+   *  (`painted`). */
   surfaces: () => ({ ...surfaceStats }),
   /** The parameters of the answer view `id` (the ramp) shows, or null. */
   viewParams: (id) => app.results[id]?.value?.params ?? null,

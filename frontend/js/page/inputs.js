@@ -67,12 +67,14 @@ function keyTarget(key, range) {
 }
 
 /** Keys move `range` in the page (keyTarget), then `moved()` and a history entry; on
- *  focus and after each press, once the page is idle, the states `ahead()` gives (one
- *  press away) have their views' answers asked for and their model's curves made, so
- *  that the next press either way waits for neither. */
+ *  focus and after each press, once the page is idle, the states `ahead(direction)`
+ *  gives (one press away, the way of the last press first) have their views' answers
+ *  asked for and their live frames made, so that the next press either way waits for
+ *  neither. */
 export function wireSliderKeys(range, moved, ahead) {
+  let direction = 1;
   const askAhead = () => onIdle(() => {
-    const states = ahead();
+    const states = ahead(direction);
     prefetchViews(states);
     computeFramesAhead(states);
   });
@@ -83,6 +85,7 @@ export function wireSliderKeys(range, moved, ahead) {
     if (target === null) return;
     event.preventDefault();
     if (target !== Number(range.value)) {
+      direction = Math.sign(target - Number(range.value));
       range.value = String(target);
       moved();
       commit();
@@ -91,10 +94,11 @@ export function wireSliderKeys(range, moved, ahead) {
   });
 }
 
-/** The states one key press away on `spec`'s slider, on either side. */
-function neighbours(spec, range) {
+/** The states one key press away on `spec`'s slider, on either side, the one the way
+ *  of `direction` (±1) first. */
+function neighbours(spec, range, direction = 1) {
   const out = [];
-  for (const step of [-1, 1]) {
+  for (const step of [direction, -direction]) {
     const position = Number(range.value) + step;
     if (position < Number(range.min) || position > Number(range.max)) continue;
     const state = { ...app.state };
@@ -115,7 +119,7 @@ function wireParameters() {
       refresh({ hold: true });
     };
     range.addEventListener("input", moved);
-    wireSliderKeys(range, moved, () => neighbours(spec, range));
+    wireSliderKeys(range, moved, (direction) => neighbours(spec, range, direction));
     box.addEventListener("input", () => {
       const value = parseNumber(box.value);
       app.state[spec.name] = Number.isNaN(value) ? box.value : value;

@@ -21,7 +21,7 @@ import { exploreBody, matchingPreset } from "./state.js";
 import {
   $, app, onIdle, setAttr, setBusy, setHidden, setText, shownState, updateSimBusy,
 } from "./store.js";
-import { live, settle } from "../plots/surfaces.js";
+import { live, prepare, settle } from "../plots/surfaces.js";
 import { frameViewIds, pageFigures } from "./views.js";
 
 /** The explorer's plots export through the page's own buttons (CSV, PNG). */
@@ -140,34 +140,55 @@ function keepLiveFrame(key, frame) {
   return frame;
 }
 
-/** The curves of the current state for a live frame: the server's frame when it is
- *  for these curves already (only m moved), else computed here (or ahead, below). */
-function liveFrame() {
-  const body = exploreBody(shownState());
+/** The curves of `state` for a live frame: the server's frame when it is for these
+ *  curves already (only m moved), else computed here (or ahead, below). */
+function liveFrame(state = shownState()) {
+  const body = exploreBody(state);
   const key = JSON.stringify(body);
   if (app.frame && key === app.frameKey) return app.frame;
   return keepLiveFrame(key, app.liveFrames.get(key) ?? modelFrame(body));
 }
 
-let ahead = []; // states whose curves are to be computed while the page is idle
+let ahead = []; // what is to be made while the page is idle, in small tasks
+/** An idle moment takes tasks ahead while this much of it is left [ms]: a task takes
+ *  1–5 ms under a phone's processor, and a key that comes meanwhile waits for it. */
+const AHEAD_ROOM_MS = 10;
 
-function computeAhead() {
-  const state = ahead.shift();
-  if (!state) return;
-  const body = exploreBody(state);
-  const key = JSON.stringify(body);
-  if (!app.liveFrames.has(key) && key !== app.frameKey) keepLiveFrame(key, modelFrame(body));
-  notify("ahead", state);
-  if (ahead.length) onIdle(computeAhead);
+function workAhead(deadline) {
+  do {
+    const task = ahead.shift();
+    if (!task) return;
+    task();
+  } while (ahead.length && deadline?.timeRemaining() > AHEAD_ROOM_MS);
+  if (ahead.length) onIdle(workAhead);
 }
 
-/** Compute the curves of `states` (one key press away) while the page is idle, one
- *  state an idle moment, so that the press finds them made and its live frame only
- *  draws (the model's curves took a fifth of a frame under a phone's processor). */
+/** The tasks that make the live frame of `state` ahead: its curves (and what views
+ *  derive from the state, onComputeAhead), then its figures, then each plot's frame
+ *  painted (surfaces.prepare), so that a press that reaches it only copies them. */
+function tasksAhead(state) {
+  let figures = null;
+  const tasks = [() => {
+    liveFrame(state);
+    notify("ahead", state);
+  }];
+  if (!app.liveOn || app.frames === 0) return tasks;
+  tasks.push(() => {
+    const style = pageStyle();
+    const plain = pageFigures(liveFrame(state), state);
+    figures = Object.fromEntries(Object.entries(plain).map(([id, figure]) => [id, styled(figure, style)]));
+  });
+  for (const id of frameViewIds()) tasks.push(() => prepare(id, figures[id]));
+  return tasks;
+}
+
+/** Make the live frames of `states` (one key press away) while the page is idle, so
+ *  that the press finds them made and its live frame only copies them: the model's
+ *  curves took a fifth of a frame under a phone's processor, the drawing the half. */
 export function computeFramesAhead(states) {
   const waiting = ahead.length > 0;
-  ahead = states.filter((state) => !Object.keys(validate(state)).length);
-  if (!waiting && ahead.length) onIdle(computeAhead);
+  ahead = states.filter((state) => !Object.keys(validate(state)).length).flatMap(tasksAhead);
+  if (!waiting && ahead.length) onIdle(workAhead);
 }
 
 function drawLiveFrame() {

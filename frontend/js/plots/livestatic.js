@@ -133,10 +133,16 @@ export function drawStatic(ctx, { axes, size, font, background }) {
  *  draws them on the live canvas itself (a layer made for one frame costs more). */
 const staticLayers = new WeakMap();
 
-export function staticLayer(gd, layout, live) {
-  const { axes, size, font, background } = layout;
-  const key = JSON.stringify([live.width, live.height, size.l, size.t, size.w, size.h, background, font,
+/** What the static layer of `layout` on a canvas of `width` × `height` pixels shows,
+ *  as a string: two layouts with the same key draw the same pixels. */
+export function staticKey({ axes, size, font, background }, width, height) {
+  return JSON.stringify([width, height, size.l, size.t, size.w, size.h, background, font,
     Object.values(axes).map((axis) => [axis.key, axis.range, axis.log, axis.style])]);
+}
+
+/** The static layer of graph `gd` for `layout` (its staticKey `key`) on canvas `live`,
+ *  or null while it is not kept (its axes are new). */
+export function staticLayer(gd, layout, live, key) {
   const layer = staticLayers.get(gd) ?? { key: null, canvas: null, drawn: false };
   staticLayers.set(gd, layer);
   if (layer.key !== key) {

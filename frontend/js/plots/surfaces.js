@@ -1,18 +1,22 @@
 // Where the explorer's figures become pixels, two ways:
 //   live    while a hand moves a slider: the figure drawn on a canvas in the graph's own
 //           axes (livedraw.js), 0.2–2 ms a plot;
+//           A frame one key press away may be painted ahead (prepare), while the page
+//           is idle; the press then copies it.
 //   settled once it stops: Plotly.react, 13–24 ms a plot, skipped when the graph holds
 //           the figure already; the canvas is then put away.
 // A graph shows the settled drawing except between a live frame and the next settle.
 
 import { drawFigure, onResized } from "./draw.js";
-import { drawLive } from "./livedraw.js";
+import { drawLive, paintAhead } from "./livedraw.js";
 import { clearLive, isLive } from "./livelayers.js";
 
 const drawn = {}; // plot id -> {data, layoutKey} the graph was last drawn with by Plotly
 const drawnLive = {}; // plot id -> the figure its live canvas shows
 
-export const surfaceStats = { reacts: 0, live: 0 };
+/** Plotly.react calls, live drawings, live frames copied from a frame painted ahead,
+ *  frames painted ahead. */
+export const surfaceStats = { reacts: 0, live: 0, ahead: 0, painted: 0 };
 
 /** Deep equality of figures; arrays element by element (they come fresh each frame). */
 function sameFigure(a, b) {
@@ -92,6 +96,12 @@ function visible(gd) {
   return inView.get(gd);
 }
 
+/** Frames painted ahead, by graph: [{figure, frame}], the last used last. The states
+ *  one key press away either way, the one shown and the one left: with three, the
+ *  state a press leaves was dropped for the one ahead, and painted again behind it. */
+const ahead = new WeakMap();
+const AHEAD_KEPT = 4;
+
 /** Draw `figure` on plot `id`'s live canvas (nothing when it shows it already: while
  *  the mass moves, only the ramp changes; later when the graph is out of view); false
  *  when the graph has no Plotly layout yet (its first drawing is Plotly's). */
@@ -103,12 +113,36 @@ export function live(id, figure) {
     deferred.set(gd, [id, figure]);
     return true;
   }
-  const done = drawLive(gd, figure);
+  const frames = ahead.get(gd) ?? [];
+  const index = frames.findIndex((entry) => sameFigure(entry.figure, figure));
+  const done = drawLive(gd, figure, frames[index]?.frame);
   if (done) {
     drawnLive[id] = { gd, figure };
     surfaceStats.live += 1;
   }
-  return done;
+  if (done === "ahead") {
+    surfaceStats.ahead += 1;
+    frames.push(...frames.splice(index, 1));
+  }
+  return Boolean(done);
+}
+
+/** Paint `figure` ahead for plot `id` (nothing when it is painted already for the graph
+ *  as it is, or the graph is out of view or not laid out): a live frame of an equal
+ *  figure then copies it rather than drawing. */
+export function prepare(id, figure) {
+  const gd = graph(id);
+  if (!gd?._fullLayout?._size || !visible(gd)) return;
+  const frames = ahead.get(gd) ?? [];
+  ahead.set(gd, frames);
+  const index = frames.findIndex((entry) => sameFigure(entry.figure, figure));
+  const old = index >= 0 ? frames.splice(index, 1)[0]
+    : frames.length >= AHEAD_KEPT ? frames.shift() : null;
+  const reuse = index >= 0 ? old.frame : old && { key: null, canvas: old.frame.canvas };
+  const frame = paintAhead(gd, figure, reuse);
+  if (!frame) return;
+  frames.push({ figure, frame });
+  if (frame !== reuse) surfaceStats.painted += 1;
 }
 
 // a graph laid out at a new size while it shows a live frame: the frame drawn again at it
