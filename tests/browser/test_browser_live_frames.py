@@ -267,43 +267,54 @@ def test_a_live_frame_of_a_plot_out_of_view_is_drawn_once_it_comes_into_view(exp
     assert in_view["shown"] and in_view["live"] and in_view["after"] == in_view["before"] + 1
 
 
-#: Each model plot's live canvas as it is, and the same plot painted anew on a canvas of
-#: its own from the figure of the page's state built from scratch: the model's curves
-#: computed again, the views' figures, styled as the page is shown; and the ranges drawn.
-#: (Compared with a canvas of the same kind: the live canvas, drawn on frame after frame,
-#: may rasterise a dotted line a shade apart, 4/255 at its edge pixels.)
-PAINTED_FROM_STATE = """async () => {
+#: At the next change of #plots data-frame (the press's frame, in the same task: before a
+#: view's answer can redraw a plot), each model plot's live canvas compared with the same
+#: plot painted anew on a canvas of its own from the figures of the page's state built
+#: from scratch: the model's curves computed again, the views' figures, styled as the
+#: page is shown; and the ranges drawn. Kept in window.__painted. (Compared with a canvas
+#: of the same kind: the live canvas, drawn on frame after frame, may rasterise a dotted
+#: line a shade apart, 4/255 at its edge pixels.)
+WATCH_PAINTED_FROM_STATE = """async () => {
   const { modelFrame } = await import('/js/models/model.js');
   const { exploreBody } = await import('/js/page/state.js');
   const { pageFigures } = await import('/js/page/views.js');
   const { pageStyle } = await import('/js/plots/draw.js');
   const { styled } = await import('/js/plots/plots.js');
   const { paintAhead } = await import('/js/plots/livedraw.js');
-  const state = window.breakaway.state();
-  const figures = pageFigures(modelFrame(exploreBody(state)), state);
-  const out = {};
-  for (const id of ['stribeck', 'hysteresis', 'phase', 'breakaway']) {
-    const gd = document.getElementById('plot-' + id);
-    const canvas = gd.querySelector('canvas.live-layer');
-    const anew = paintAhead(gd, styled(figures[id], pageStyle())).canvas;
-    out[id] = {same: anew.toDataURL() === canvas.toDataURL(), ranges: canvas.dataset.ranges};
-  }
-  return out;
+  window.__painted = null;
+  const plots = document.getElementById('plots');
+  const frame = plots.dataset.frame;
+  const observer = new MutationObserver(() => {
+    if (plots.dataset.frame === frame) return;
+    observer.disconnect();
+    const state = window.breakaway.state();
+    const figures = pageFigures(modelFrame(exploreBody(state)), state);
+    const out = {};
+    for (const id of ['stribeck', 'hysteresis', 'phase', 'breakaway']) {
+      const gd = document.getElementById('plot-' + id);
+      const canvas = gd.querySelector('canvas.live-layer');
+      const anew = paintAhead(gd, styled(figures[id], pageStyle())).canvas;
+      out[id] = {same: anew.toDataURL() === canvas.toDataURL(), ranges: canvas.dataset.ranges};
+    }
+    window.__painted = {checks: out, surfaces: window.breakaway.surfaces()};
+  });
+  observer.observe(plots, {attributes: true, attributeFilter: ['data-frame']});
 }"""
 
 
-def press_when_painted_ahead(explorer, label: str, key: str, painted: int) -> dict:
+def press_when_painted_ahead(explorer, label: str, key: str, painted: int) -> tuple[dict, dict]:
     """Focus slider `label`, wait until the frames one press away are painted ahead
-    (`painted` of them), press `key`: the surfaces' counts before the press."""
+    (`painted` of them), press `key`: the surfaces' counts before the press, and at the
+    press's frame the checks of WATCH_PAINTED_FROM_STATE with the counts then."""
     page = explorer.page
     slider = page.get_by_label(label, exact=True)
     slider.focus()
     until(page, f"window.breakaway.surfaces().painted >= {painted}")
     before = page.evaluate("window.breakaway.surfaces()")
-    frames = explorer.frames()
+    page.evaluate(WATCH_PAINTED_FROM_STATE)
     slider.press(key)
-    until(page, f"window.breakaway.frames() > {frames}")
-    return before
+    until(page, "window.__painted !== null")
+    return before, page.evaluate("window.__painted")
 
 
 @pytest.mark.parametrize("label,key,painted", [
@@ -316,11 +327,9 @@ def test_a_key_press_copies_the_frame_painted_ahead_which_is_the_states_own(expl
     # them, and what it shows is the drawing of its own state's figures, pixel for pixel
     explorer.open("?sim=0")
     page = explorer.page
-    before = press_when_painted_ahead(explorer, label, key, painted)
-    painted = page.evaluate(PAINTED_FROM_STATE)  # before the settle puts the canvases away
-    after = page.evaluate("window.breakaway.surfaces()")
-    assert after["ahead"] - before["ahead"] == 4  # all four copied, none drawn
-    for plot, check in painted.items():
+    before, shown = press_when_painted_ahead(explorer, label, key, painted)
+    assert shown["surfaces"]["ahead"] - before["ahead"] == 4  # all four copied, none drawn
+    for plot, check in shown["checks"].items():
         assert check["same"], plot
     explorer.ready()
     assert_plots_match_model(explorer, explorer.state())
@@ -335,12 +344,10 @@ def test_a_frame_painted_ahead_is_not_copied_once_the_graph_has_changed(explorer
     page.get_by_label("Fs [N] slider", exact=True).focus()
     until(page, "window.breakaway.surfaces().painted >= 8")
     page.evaluate("Plotly.relayout('plot-stribeck', {'xaxis.range': [-0.5, 0.5]})")
-    before = press_when_painted_ahead(explorer, "Fs [N] slider", "ArrowRight", 8)
-    painted = page.evaluate(PAINTED_FROM_STATE)
-    after = page.evaluate("window.breakaway.surfaces()")
-    assert after["ahead"] - before["ahead"] == 3
-    assert json.loads(painted["stribeck"]["ranges"])["x"] == [-0.5, 0.5]
-    for plot, check in painted.items():  # the three copied, the Stribeck plot drawn (no dots)
+    before, shown = press_when_painted_ahead(explorer, "Fs [N] slider", "ArrowRight", 8)
+    assert shown["surfaces"]["ahead"] - before["ahead"] == 3
+    assert json.loads(shown["checks"]["stribeck"]["ranges"])["x"] == [-0.5, 0.5]
+    for plot, check in shown["checks"].items():  # the three copied, the Stribeck plot drawn (no dots)
         assert check["same"], plot
     explorer.ready()
     assert_plots_match_model(explorer, explorer.state())
