@@ -42,8 +42,6 @@ KNOWN_GAPS: dict[tuple[str, int], str] = {
                                "0.67 (truth 0.31), so linear viscous leaves Fc 80 % high",
     ("gearbox-coarse-spikes", 0): "Fc 39 % high, n = 0.51 (truth 0.31): the level and "
                                   "the curve trade on a coarse encoder",
-    ("short-viscous", 0): "viscous refused: the BIC falls by 3.3 beside the allowance for "
-                          "the record's other dependences",
 }
 
 

@@ -125,8 +125,29 @@ class Judge:
         kept = tuple(v for v in allowance.structured_variables(
             trial.problem, trial.residual()) if allowance.variable_of(v) not in own)
         H = allowance.basis(trial.problem, kept)
+        beside = f" (beside an allowance for a dependence on {listing(kept)})" \
+            if kept else ""
+        reason = self._evidence(current, trial, H, MIN_BIC_DROP * len(new), beside)
+        if reason:
+            return Verdict(reason, allowance=kept)
+        reason, h0, h1 = self.compare(current, trial, H)
+        return Verdict(reason and reason + beside, h1.rmse, h0.rmse, kept, twin)
+
+    def needs_drop(self, without: FitResult, trial: FitResult) -> str | None:
+        """Why ``trial`` (the same effects with a Stribeck drop) does not earn its
+        drop's parameters beside ``without`` (None: it does), by the standard an
+        effect meets: the BIC, a visible RMSE gain and the held-out blocks."""
+        self.weights = self.weights_under(without)
+        return self._evidence(without, trial, None, MIN_BIC_DROP) or \
+            self.compare(without, trial)[0]
+
+    def _evidence(self, current: FitResult, trial: FitResult, H, required: float,
+                  beside: str = "") -> str | None:
+        """Why ``trial``'s added parameters are not worth naming on all rows (the BIC
+        beside the allowance ``H``, which ``beside`` describes, must fall by
+        ``required``); None where they are."""
         n = trial.n
-        r0, r1 = _same_allowance(current.residual(), trial.residual(), H)
+        r0, r1 = _same_allowance(current.residual(), trial.residual(), H, self.weights)
         rss0, rss1 = self._weighted(r0), self._weighted(r1)
         # rows whose residuals move together are not independent observations: the BIC
         # counts what the candidate leaves in units of its correlation time
@@ -134,28 +155,26 @@ class Judge:
         n_eff = n
         if trial.problem.kind == "timeseries":
             order = smooth_order(trial.problem, np.arange(n))
-            n_eff = max(n / correlation_time(r1[order]), len(trial.problem.names) + 2.0)
+            # (of the residual as the fit weighs it: rows the resolution of x makes
+            # uncertain, whose errors move together after each reversal, count for less)
+            scaled = r1 if self.weights is None else np.sqrt(self.weights) * r1
+            n_eff = max(n / correlation_time(scaled[order]), len(trial.problem.names) + 2.0)
         drop = n_eff * math.log(max(rss0, 1e-300) / max(rss1, 1e-300)) \
             - (len(trial.problem.names) - len(current.problem.names)) * math.log(n_eff)
-        beside = f" (beside an allowance for a dependence on {listing(kept)})" \
-            if kept else ""
-        if not drop >= MIN_BIC_DROP * len(new):
-            return Verdict(f"the BIC falls by {drop:.1f}{beside}, less than the "
-                           f"{MIN_BIC_DROP * len(new):g} required", allowance=kept)
+        if not drop >= required:
+            return f"the BIC falls by {drop:.1f}{beside}, less than the {required:g} required"
         # an effect worth naming changes the fit visibly: the RMSE the fit minimises
         # (rows weighted as in the fit), not one relative to what an allowance leaves
         before, after = self._rms(current.residual()), self._rms(trial.residual())
+        unit = self.data.unit("N")
         if trial.rmse > current.rmse:
             # rows weighted alike, the error a reader sees must not rise either
-            return Verdict(f"the RMSE rises from {current.rmse:.4g} to {trial.rmse:.4g} "
-                           f"{self.data.unit('N')}", allowance=kept)
+            return f"the RMSE rises from {current.rmse:.4g} to {trial.rmse:.4g} {unit}"
         if after > (1 - MIN_RMSE_GAIN) * before:
             weighted = " (rows weighted as in the fit)" if self.weights is not None else ""
-            return Verdict(f"the RMSE{weighted} falls by only {100 * (1 - after / before):.2g} %"
-                           f", from {before:.4g} to {after:.4g} "
-                           f"{self.data.unit('N')}", allowance=kept)
-        reason, h0, h1 = self.compare(current, trial, H)
-        return Verdict(reason and reason + beside, h1.rmse, h0.rmse, kept, twin)
+            return (f"the RMSE{weighted} falls by only {100 * (1 - after / before):.2g} %"
+                    f", from {before:.4g} to {after:.4g} {unit}")
+        return None
 
     def compare(self, current: FitResult, trial: FitResult, H=None):
         """Why ``trial`` does not predict the held-out blocks better than ``current``
@@ -163,7 +182,7 @@ class Judge:
         errors; ``H`` an allowance fitted to what ``trial`` leaves of the held-out rows
         and taken off both."""
         h0, h1 = self.heldout(current), self.heldout(trial)
-        r0, r1 = _same_allowance(h0.residual, h1.residual, H)
+        r0, r1 = _same_allowance(h0.residual, h1.residual, H, self.weights)
         before, after = self._block_sse(r0, h0.blocks), self._block_sse(r1, h1.blocks)
         gain = before - after
         unit = self.data.unit("N")
@@ -210,13 +229,17 @@ class Judge:
         return float(np.sum(self.weights)) if self.weights is not None else float(n)
 
 
-def _same_allowance(r0, r1, H):
+def _same_allowance(r0, r1, H, weights=None):
     """Both residuals less one allowance: the smooth dependence ``H`` fitted to what
-    the candidate leaves (``r1``), so that it takes only what the candidate does not
-    explain and is the same on both sides."""
+    the candidate leaves (``r1``, rows ``weights``-ed as in the fit), so that it takes
+    only what the candidate does not explain and is the same on both sides."""
     if H is None or H.shape[1] == 0:
         return r0, r1
-    coef, *_ = np.linalg.lstsq(H, r1, rcond=None)
+    if weights is None:
+        coef, *_ = np.linalg.lstsq(H, r1, rcond=None)
+    else:
+        root = np.sqrt(weights)
+        coef, *_ = np.linalg.lstsq(H * root[:, None], r1 * root, rcond=None)
     taken = H @ coef
     return r0 - taken, r1 - taken
 
