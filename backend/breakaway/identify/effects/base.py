@@ -116,6 +116,9 @@ class Effect:
     #: whether the effect's force reads the acceleration taken from x (its resolution
     #: then reaches the prediction twice differentiated)
     reads_acceleration: bool = False
+    #: (effect, values): this effect holds ``effect`` as the case ``values`` (a curve
+    #: with n = 1 is the straight line), so its fit can start where that one's ended
+    extends: tuple[str, dict] | None = None
 
     @property
     def keys(self) -> tuple[str, ...]:

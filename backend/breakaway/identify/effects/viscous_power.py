@@ -36,6 +36,7 @@ class ViscousPower(Effect):
               Param("n", "", lambda sc: EXPONENT_BOUNDS, exponent_of="sigma"))
     description = "friction rising with speed along a curve, σ·sgn(v)·|v|ⁿ"
     regressor = {"timeseries": "v", "steady": "v"}
+    extends = ("viscous", {"n": 1.0})
 
     def unresolved(self, pb, params):
         """A record that never slides does not show a rise with speed; and in a time
