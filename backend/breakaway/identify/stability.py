@@ -36,9 +36,11 @@ RELATIVE_AGREEMENT = 0.25
 AGREEMENT_SIGMAS = 2.0
 #: ... and an angle within this [rad].
 PHASE_AGREEMENT = 0.5
-#: A half's value of an effect's size votes only where its correlation with every other
-#: parameter of the half's fit stays at or below this.
+#: A half's value of an effect's size votes only where its multiple correlation with the
+#: other parameters of the half's fit (:func:`multiple_correlation`) stays at or below this.
 VOTE_CORRELATION = 0.9
+#: An eigenvalue of a correlation matrix this small (of its largest) is a flat direction.
+FLAT_EIGENVALUE = 1e-10
 #: Evaluations of each half's refit (from the whole record's solution).
 HALF_EVALUATIONS = 60
 
@@ -72,10 +74,10 @@ def _holds(half: FitResult, name: str, size: bool = False) -> bool:
     """Whether ``half`` determines ``name``'s value: off its bounds, with a standard error
     no larger than the value. A shape parameter correlated with another of the same model
     still votes (both halves fit the same model); an effect's size does not when a
-    correlation above :data:`VOTE_CORRELATION` ties it to another parameter: inside a
-    half of a constant-acceleration run m_e·a moves with Fc (the ramps in and out of the
-    constant keep the correlation under 0.99), and the half gives m_e whatever its Fc
-    leaves."""
+    multiple correlation above :data:`VOTE_CORRELATION` ties it to the other parameters:
+    inside a half of a constant-acceleration run m_e·a moves with the levels (the ramps in
+    and out of the constant keep each pair's correlation under 0.99), and the half gives
+    m_e whatever they leave."""
     a = half.assessment
     why, se = a.why.get(name), half.stderr.get(name)
     if why is not None and not why.startswith("correlated:") or se is None:
@@ -84,9 +86,24 @@ def _holds(half: FitResult, name: str, size: bool = False) -> bool:
         return False
     if not size or a.correlation is None or name not in a.names:
         return True
-    row = np.abs(np.nan_to_num(a.correlation[a.names.index(name)]))
-    row[a.names.index(name)] = 0.0
-    return float(np.max(row, initial=0.0)) <= VOTE_CORRELATION
+    return multiple_correlation(a.correlation, a.names.index(name)) <= VOTE_CORRELATION
+
+
+def multiple_correlation(correlation, index: int) -> float:
+    """The multiple correlation of parameter ``index`` with all the others of a fit
+    (``correlation`` its matrix): √(1 − 1/(R⁻¹)ᵢᵢ), 1 along a flat direction. No pair
+    need show it: in the first half of a constant-acceleration run m_e·a is what Fc, Fs,
+    V and δ together make (multiple correlation 0.996), while no one of them correlates
+    with m_e above 0.52."""
+    R = np.nan_to_num(np.asarray(correlation, dtype=float))
+    if R.shape[0] < 2:
+        return 0.0
+    values, vectors = np.linalg.eigh(R)
+    flat = values <= FLAT_EIGENVALUE * max(float(values[-1]), 1.0)
+    if np.any(np.abs(vectors[index, flat]) > FLAT_EIGENVALUE):
+        return 1.0  # the parameter moves along a direction the fit leaves flat
+    precision = float(np.sum(vectors[index, ~flat] ** 2 / values[~flat]))
+    return math.sqrt(max(0.0, 1.0 - 1.0 / precision)) if precision > 0 else 0.0
 
 
 def unstable(data: Dataset, fit: FitResult, effect: str) -> str | None:
