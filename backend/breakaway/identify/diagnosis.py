@@ -32,7 +32,7 @@ from .csvdata import Dataset
 from .effects import availability
 from .fitting import FitResult, fit_model, refit
 from .models import problem_for, with_weights
-from .drop import drop_bound_text, unresolved_drop, without_drop
+from .drop import drop_bound_text, retried_drop, unresolved_drop, without_drop
 from .noise import (NoiseFloor, estimate, input_floor, input_weights, is_command,
                     programmed_force)
 from .outliers import spike_rows
@@ -180,6 +180,14 @@ def _diagnose(data: Dataset, progress, set_aside: SetAside | None = None,
         # the search left out beside the drop stays out)
         if current.effects and not search.white(current):
             current, current_heldout = search.swap(current, current_heldout, available)
+        # a drop under a steeper rise never makes the curve fall, and a fit trapped
+        # beside the search's drop can misplace one that is there: the chosen effects
+        # with a drop fitted afresh, kept where the data determine it and it earns its
+        # parameters as an effect does
+        retried = retried_drop(current, noise.value)
+        if retried is not None and search.judgement.needs_drop(current, retried) is None:
+            current, current_heldout, dropless = retried, search.heldout(retried), None
+    if dropless:
         if not screen_base.problem.tied:
             screen_base = without_drop(screen_base)
             heldout_before = search.heldout(screen_base)
