@@ -173,13 +173,18 @@ function tasksAhead(state) {
     notify("ahead", state);
   }];
   if (!app.liveOn || app.frames === 0) return tasks;
-  tasks.push(() => {
-    const style = pageStyle();
-    const plain = pageFigures(liveFrame(state), state);
-    figures = Object.fromEntries(Object.entries(plain).map(([id, figure]) => [id, styled(figure, style)]));
-  });
+  tasks.push(() => { figures = liveFigures(state); });
   for (const id of frameViewIds()) tasks.push(() => prepare(id, figures[id]));
   return tasks;
+}
+
+/** The styled figures a live frame of `state` draws, by plot id: one builder for the
+ *  frame a press draws and the one painted ahead for it, which it copies only when
+ *  the two are equal. */
+function liveFigures(state = shownState()) {
+  const style = pageStyle();
+  const figs = pageFigures(liveFrame(state), state);
+  return Object.fromEntries(frameViewIds().map((id) => [id, styled(figs[id], style)]));
 }
 
 /** Make the live frames of `states` (one key press away) while the page is idle, so
@@ -195,8 +200,7 @@ function drawLiveFrame() {
   app.liveRequest = null;
   const version = app.version;
   if (!app.busy || app.shownVersion === version) return;
-  const figs = pageFigures(liveFrame(), shownState());
-  for (const id of frameViewIds()) live(id, styled(figs[id], pageStyle()));
+  for (const [id, figure] of Object.entries(liveFigures())) live(id, figure);
   app.shownVersion = version;
   app.frames += 1;
   $("plots").dataset.frame = String(app.frames);
