@@ -10,7 +10,8 @@ import pytest
 
 from breakaway.identify import identify
 from breakaway.identify.fitting import fit_model
-from breakaway.identify.noise import estimate, input_floor, input_weights, is_command
+from breakaway.identify.noise import (carried_from_x, estimate, input_floor, input_weights,
+                                      is_command)
 
 from . import cases
 
@@ -92,3 +93,45 @@ def test_mains_hum_sampled_at_100_hz_is_not_read_as_three_times_its_size(hum_hz,
     data.columns["t"] = t
     floor = estimate(problem_for(data)).value
     assert white / 1.5 <= floor <= 1.5 * math.hypot(white, hum / math.sqrt(2))
+
+
+def _swing_less_gravity(sensor_noise, seed=0, n=4000, counts=1024):
+    """A joint swinging slowly (under a count a row) and its force column: the
+    programme less a gravity model of the encoder's reading (``sensor_noise`` = 0), or
+    the true force read by a sensor with ``sensor_noise`` [N·m]. Returns the dataset
+    and the std [N·m] of what the reading's steps put into the column."""
+    rng = np.random.default_rng(seed)
+    t = np.arange(n) / 500.0
+    count = 2 * np.pi / counts
+    angle = 0.6 * np.sin(2 * np.pi * 0.2 * t + rng.uniform(0, 2 * np.pi))
+    reading = np.round(angle / count) * count
+    programme = 2.0 * np.sin(2 * np.pi * 0.13 * t)
+    true = programme - 3.0 * np.sin(angle)
+    if sensor_noise == 0:
+        F = programme - 3.0 * np.sin(reading)
+    else:
+        F = true + sensor_noise * rng.standard_normal(n)
+    return cases.dataset("timeseries", {"t": t, "x": reading, "F": F}), float(np.std(F - true))
+
+
+def test_a_force_computed_from_the_encoders_reading_carries_its_steps():
+    # issue 26: a programmed torque less a gravity model steps by g'(x)·count wherever
+    # the reading ticks; between ticks it is smooth, so differences read only its
+    # printed digits (3.3e-5 N·m beside 4e-3 N·m that the column carries)
+    from breakaway.identify.models import problem_for
+
+    data, carried = _swing_less_gravity(0.0)
+    noise = estimate(problem_for(data))
+    assert noise.method == "carried from x"
+    assert carried / 1.5 <= noise.value <= 1.5 * carried
+    assert carried_from_x(problem_for(data)) == pytest.approx(noise.value)
+
+
+def test_a_measured_force_is_as_rough_where_the_reading_ticks_as_between():
+    from breakaway.identify.models import problem_for
+
+    data, _ = _swing_less_gravity(0.003)
+    noise = estimate(problem_for(data))
+    assert carried_from_x(problem_for(data)) == 0.0
+    assert noise.method == "differences"
+    assert noise.value == pytest.approx(0.003, rel=0.2)

@@ -254,3 +254,27 @@ def test_a_pair_is_named_only_where_each_earns_its_place_beside_the_other():
     assert "drift" not in r["effects"]
     assert "inertia" in r["effects"]
     assert r["final"]["params"]["m_e"] == pytest.approx(recording.truth["m_e"], rel=0.1)
+
+
+def test_a_curve_chosen_before_the_effects_beside_it_must_still_earn_its_exponent():
+    # a joint's torque estimate (programme less a gravity model): the curve came in
+    # before the inertia and the offset with n = 0.64 ± 0.09 for a straight viscous
+    # term, and took 18 % of Fc; beside them the exponent no longer earns its place
+    from .rigzoo import families
+
+    recording = families()["estimated-torque"](2004)
+    r = report(diagnose(parse_csv(recording.csv)))
+    assert "viscous" in r["effects"] and "viscous-power" not in r["effects"]
+    assert "named viscous, its special case" in r["candidates"]["viscous-power"]["reason"]
+    assert r["final"]["params"]["Fc"] == pytest.approx(recording.truth["Fc"], rel=0.1)
+
+
+def test_a_convex_curve_is_not_straightened_into_a_line_through_the_origin():
+    # a gearbox's steady curve rising as |v|^1.86: the straight line meets it only with
+    # Fc on its bound 0, which describes no curve with a level at rest
+    from .rigzoo import families
+
+    recording = families()["gearbox-steady"](2004)
+    r = report(diagnose(parse_csv(recording.csv)))
+    assert r["effects"] == ["viscous-power"]
+    assert r["final"]["params"]["n"] == pytest.approx(recording.truth["n"], abs=0.15)

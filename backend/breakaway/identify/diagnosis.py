@@ -106,7 +106,7 @@ def _search(search: Selection, start: FitResult, available):
             current, current_heldout = search.forward(swapped, available)
             if len(current.effects) > 1:
                 current, current_heldout = search.backward(current, current_heldout)
-    return current, current_heldout
+    return search.straighten(current, current_heldout)
 
 
 def _diagnose(data: Dataset, progress, set_aside: SetAside | None = None,
@@ -180,6 +180,7 @@ def _diagnose(data: Dataset, progress, set_aside: SetAside | None = None,
         # the search left out beside the drop stays out)
         if current.effects and not search.white(current):
             current, current_heldout = search.swap(current, current_heldout, available)
+            current, current_heldout = search.straighten(current, current_heldout)
         # a drop under a steeper rise never makes the curve fall, and a fit trapped
         # beside the search's drop can misplace one that is there: the chosen effects
         # with a drop fitted afresh, kept where the data determine it and it earns its

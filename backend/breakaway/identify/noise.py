@@ -6,6 +6,9 @@
 - Otherwise F is taken as smooth along its regressor (time, speed, rate): robust (MAD)
   second and third differences; each is unbiased for white noise and too high where F
   curves, so the smaller is taken.
+- A force computed from the encoder's reading steps where the reading ticks: what it
+  carries from x (:func:`carried_from_x`) is noise of the column too, and the floor is
+  never below it.
 - Never below the quantisation of the force column, ``q/√12``.
 
 The floor is the noise of the measured force alone. A force column that is noise-free
@@ -43,6 +46,11 @@ SMOOTH_TURNS = 0.02
 MIN_CHANGES = 20
 #: Every how many rows a time series' differences are also taken (:func:`orderings`).
 DECIMATIONS = (2, 3)
+#: A force whose second differences are this many times rougher (MAD) at the rows where
+#: x's reading ticks than between them carries x's steps (:func:`carried_from_x`) ...
+TICK_ROUGHNESS = 3.0
+#: ... judged where each kind of row holds at least this many rows.
+MIN_TICK_ROWS = 100
 #: A force whose fast part a filter of x's explains this well is computed from x ...
 CONTROLLER_R2 = 0.9
 #: ... over this many samples of x's history ...
@@ -55,7 +63,8 @@ FAST_WINDOW = 9
 class NoiseFloor:
     """The estimate and how it was made.
 
-    ``method`` is ``"replicates"``, ``"differences"`` or ``"quantisation"``;
+    ``method`` is ``"replicates"``, ``"differences"``, ``"carried from x"``
+    (:func:`carried_from_x`) or ``"quantisation"``;
     ``quantum_F`` the step of the force column (0 if none); ``smooth_F`` the differences
     estimate of F alone; ``command`` whether the force column is a command
     (:func:`is_command`).
@@ -150,6 +159,39 @@ def difference_sigma(values, groupings) -> float:
     return min(estimates) if estimates else math.nan
 
 
+def carried_from_x(problem) -> float:
+    """The noise [N] a force column carries from the position's reading: 0 for a
+    measured force.
+
+    A force computed from the encoder's reading (a programmed torque less a gravity
+    model, an observer's estimate) steps wherever the reading ticks, by the model's
+    slope times one count, while the true force knows nothing of the encoder; a
+    sensor's noise is as rough at those rows as between them. So where F's second
+    differences are :data:`TICK_ROUGHNESS` times rougher (MAD) at the rows beside a tick
+    than at the others, the column holds ``−g'(x)·e``, e the reading's error (one count
+    wide, uniform), and its std is ``rms(J)/√12`` for the steps J; each step J puts ±J
+    into the two second differences beside it, so ``rms(J)²/12 = (ms_tick −
+    ms_other)·6/12`` over the normalised differences. This is the noise of F alone, as
+    the column holds it, whatever model is fitted: differences alone miss it where the
+    body moves slower than a count a row (the error is then a slow sawtooth that they
+    pass between its steps)."""
+    if problem.kind != "timeseries" or not getattr(problem, "quantum_x", 0.0) > 0:
+        return 0.0
+    F = problem.measured
+    ticks = np.diff(problem.recorded_x) != 0
+    beside = ticks[1:] | ticks[:-1]  # the rows of F's second differences
+    if min(np.count_nonzero(beside), np.count_nonzero(~beside)) < MIN_TICK_ROWS:
+        return 0.0
+    second = np.diff(F, 2) / math.sqrt(6)
+    at, between = second[beside], second[~beside]
+    mad_at, mad_between = (_MAD_TO_STD * float(np.median(np.abs(d))) for d in (at, between))
+    if not mad_at > TICK_ROUGHNESS * mad_between:
+        return 0.0
+    # mean squares robust to the odd glitch: each row's difference clipped at 10 MADs
+    at, between = np.clip(at, -10 * mad_at, 10 * mad_at), np.clip(between, -10 * mad_at, 10 * mad_at)
+    return math.sqrt(max(float(np.mean(at**2) - np.mean(between**2)), 0.0) / 2.0)
+
+
 def estimate(problem) -> NoiseFloor:
     """Model-free estimate of the measurement noise std [N] (see the module docstring)."""
     F = problem.measured
@@ -169,6 +211,9 @@ def estimate(problem) -> NoiseFloor:
         break
     if not math.isfinite(floor):
         floor = smooth
+    carried = carried_from_x(problem)
+    if carried > floor:
+        floor, method = carried, "carried from x"
     if q > 0 and not floor >= q / math.sqrt(12):
         floor, method = q / math.sqrt(12), "quantisation"
     if not floor > 0:
@@ -295,5 +340,5 @@ def input_weights(errors, noise: float) -> np.ndarray | None:
     return floor**2 / (floor**2 + np.square(errors))
 
 
-__all__ = ["NoiseFloor", "input_weights", "computed_from_x", "difference_sigma", "estimate", "input_floor",
+__all__ = ["NoiseFloor", "input_weights", "carried_from_x", "computed_from_x", "difference_sigma", "estimate", "input_floor",
            "is_command", "noise_floor", "orderings", "programmed_force", "turn_share"]

@@ -15,6 +15,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from .csvdata import Dataset
+from .drop import LEVELS
 from .effects import EFFECTS
 from .fitting import (FitResult, best_base_starts, family, fit_model, fit_with_effect, refit,
                       weighted_rmse)
@@ -306,6 +307,45 @@ class Selection:
                     current_heldout = self.heldout(reduced)
                     changed = True
                     break
+        return current, current_heldout
+
+    def straighten(self, current, current_heldout):
+        """A curve in the model that holds another as a special case (σ·|v|ⁿ holds
+        the line at n = 1) keeps its extra parameter only where it earns it beside every
+        other effect of the model, as an effect does beside the model: a curve chosen
+        in a round before the effects that came after (an inertia, an offset) can have
+        bent towards what they explain."""
+        for effect in current.effects:
+            nested = EFFECTS[effect].extends
+            if nested is None or nested[0] in current.effects:
+                continue
+            straight = tuple(nested[0] if e == effect else e for e in current.effects)
+            start = {k: v for k, v in current.params.items() if k not in nested[1]}
+            try:
+                line = fit_model(self.data, straight, starts=[start], screen=1, **family(current))
+            except (ValueError, FloatingPointError):
+                continue
+            if any(line.assessment.bound.get(low) for low, _ in LEVELS if low in line.params):
+                # a line that takes a Coulomb level to its bound is no description of
+                # the curve (a convex rise met by a line through the origin)
+                continue
+            line_heldout = self.heldout(line)
+            beside = self.judgement.judge(line, current).reason
+            why = f"its extra parameter does not earn its place beside the rest of the model: {beside}" \
+                if beside else None
+            if why is None and effect == "viscous-power":
+                preferred, text = power_is_preferred(current, line, self.heldout(current), line_heldout)
+                why = None if preferred else text
+            if why is None:
+                continue
+            self.verdicts[effect] = Candidate(current.rmse, current.bic, None, False,
+                                              f"named {nested[0]}, its special case: {why}")
+            verdict = self.verdicts.setdefault(nested[0], Candidate())
+            verdict.rmse, verdict.bic, verdict.accepted, verdict.reason = line.rmse, line.bic, True, None
+            curve_step = next(s for s in reversed(self.steps) if s.effect == effect)
+            self.steps.append(Step(nested[0], line, f"{curve_step.evidence}; named in its "
+                                   f"straight form, {nested[0]}: {why}", line_heldout))
+            return self.straighten(line, line_heldout)
         return current, current_heldout
 
     def swap(self, current, current_heldout, available):

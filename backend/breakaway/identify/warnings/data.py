@@ -47,12 +47,15 @@ def _command(problem, noise: NoiseFloor, inputs: float) -> list[dict]:
     q_x, noise_x = getattr(problem, "quantum_x", 0.0), getattr(problem, "noise_x", 0.0)
     error = (f"its steps of {q_x:.3g} {length}" if q_x > 0
              else f"a noise std of about {noise_x:.3g} {length}")
+    floor = (f"the noise floor {noise.value:.4g} {unit} is what the column carries from "
+             f"x's reading: it steps where the reading ticks, as a force computed from x "
+             f"does and a measured one does not" if noise.method == "carried from x"
+             else f"the noise floor {noise.value:.4g} {unit} is the force's own resolution")
     return [warning("force-is-command", "F", (
         f"the force column is a command, not a measurement (no noise above its resolution, "
         f"differences estimate {noise.smooth_F:.3g} {unit}): the measurement error sits in x "
         f"({error}), which sets {inputs:.3g} {unit} of the prediction error through the "
-        f"model (the input floor); the noise floor {noise.value:.4g} {unit} is the "
-        f"force's own resolution"))]
+        f"model (the input floor); {floor}"))]
 
 
 def _one_direction(problem) -> list[dict]:
