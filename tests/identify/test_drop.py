@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from breakaway.identify import identify
+from breakaway.identify import identify, parse_csv
 from breakaway.identify.drop import largest_fall, steady_curve, unresolved_drop, without_drop
 from breakaway.identify.fitting import fit_model
 from breakaway.identify.synthetic import _dataset
@@ -105,3 +105,19 @@ def test_a_plain_concave_rise_is_reported_without_a_drop():
     assert params["Fs"] == params["Fc"]
     assert params["Fc"] == pytest.approx(1.9, rel=0.1)
     assert params["n"] == pytest.approx(0.7, abs=0.1)
+
+
+def test_a_drop_pressed_against_the_slowest_stribeck_velocity_is_no_drop():
+    # strokes of a dry slide with no drop: the fit put 0.21 ± 0.07 N of "drop" at the
+    # lowest V of the range (20 µm/s) and called its shape δ = 0.44 ± 0.18 determined
+    from .rigzoo import families
+
+    recording = families()["flat-timeseries"](2012)
+    report = identify(parse_csv(recording.csv))
+    final = report["final"]
+    for name in ("Fs", "V", "delta"):
+        assert not final["determined"][name]
+    assert any(w["code"] == "beyond-data" and "sits on a bound" in w["message"]
+               for w in report["warnings"])
+    assert final["determined"]["Fc"]
+    assert final["params"]["Fc"] == pytest.approx(recording.truth["level"], rel=0.01)

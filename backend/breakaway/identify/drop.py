@@ -11,7 +11,7 @@ unresolved (:func:`unresolved_drop`) when
 - Fs − Fc is within :data:`GAP_SIGMAS` standard errors of 0;
 - V lies beyond the fastest speed at which the data show the curve, and the part of
   the drop over the speeds they show is within :data:`FALL_NOISE` noise floors;
-- δ sits on a bound of its range;
+- V or δ sits on a bound of its range;
 - the steady curve with the effects that act on the body does not fall, anywhere over
   the speeds the data show it at, by more than :data:`FALL_NOISE` noise floors.
 
@@ -113,6 +113,11 @@ def unresolved_drop(fit: FitResult, noise: float, bends: bool = True) -> str | N
                 f"within {FALL_NOISE:g} noise floors")
     if a.bound.get("delta") or p["delta"] <= DELTA_BOUNDS[0] or p["delta"] >= DELTA_BOUNDS[1]:
         return f"its shape δ = {p['delta']:.3g} sits on a bound of its range"
+    if a.bound.get("V"):
+        # a drop pressed against the slowest Stribeck velocity the range allows is over
+        # before any speed the data resolve: neither its speed nor its shape is theirs
+        return (f"its Stribeck velocity V = {p['V']:.3g} {speed_unit} sits on a bound of "
+                f"its range")
     if bends and problem.kind != "breakaway":
         fall = largest_fall(problem, p, slowest, fastest)
         if not fall > FALL_NOISE * noise:
