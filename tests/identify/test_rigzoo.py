@@ -33,10 +33,9 @@ STEADY = ("gearbox-steady", "offset-steady", "flat-steady")
 KNOWN_GAPS: dict[tuple[str, int], str] = {
     ("estimated-torque", 0): "ripple named beside a model-based torque estimate; noise "
                              "floor 3x below the estimate's noise; Fc 15 % low",
-    ("seal-drift", 0): "asymmetry named: the stiction peaks of the two directions sit at "
-                       "the two ends of the travel, where the seal's position dependence "
-                       "differs (drift found, α within 25 %)",
-    ("seal-pressure", 0): "as seal-drift seed 0 (asymmetry named); the offset's 1.3 % "
+    ("seal-pressure", 0): "asymmetry named: the stiction peaks of the two directions sit "
+                          "at the two ends of the travel, where the seal's position "
+                          "dependence differs; the offset's 1.3 % "
                           "RMSE gain under the 3 % required",
     ("gearbox-timeseries", 0): "viscous-power refused: its fit takes Fc to 0 with n = "
                                "0.67 (truth 0.31), so linear viscous leaves Fc 80 % high",

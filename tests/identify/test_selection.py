@@ -278,3 +278,16 @@ def test_a_convex_curve_is_not_straightened_into_a_line_through_the_origin():
     r = report(diagnose(parse_csv(recording.csv)))
     assert r["effects"] == ["viscous-power"]
     assert r["final"]["params"]["n"] == pytest.approx(recording.truth["n"], abs=0.15)
+
+
+def test_an_asymmetry_whose_levels_do_not_stand_apart_is_not_named():
+    # a coarse encoder with spikes: the negative Coulomb level came out at the positive
+    # one's value (0.1796 ± 0.0007 against 0.1798), the Stribeck level beyond the data,
+    # and the asymmetry was named on the misfit of a presliding shape 50 times too soft
+    from .rigzoo import families
+
+    recording = families()["coarse-encoder-spikes"](2000)
+    r = report(diagnose(parse_csv(recording.csv)))
+    assert "asymmetry" not in r["effects"]
+    assert "within 2 standard errors of 0" in r["candidates"]["asymmetry"]["reason"]
+    assert r["final"]["params"]["Fc"] == pytest.approx(recording.truth["Fc"], rel=0.02)

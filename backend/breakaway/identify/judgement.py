@@ -114,12 +114,13 @@ class Judge:
         twin = (twin_key, listing(before)) if twin_key else None
         beyond = beyond_data(trial, self.noise)
         unshown = [e for e in new if not any(
-            _sized(trial, k) and k not in beyond
+            _sized(trial, k) and k not in beyond and _apart(trial, k, EFFECTS[e].differs_from.get(k))
             for k in EFFECTS[e].size_keys)]
         if unshown:
             keys = EFFECTS[unshown[0]].size_keys
+            differs = EFFECTS[unshown[0]].differs_from
             return Verdict(f"the data do not determine its size ({', '.join(keys)}: "
-                           f"{_why(trial, keys, beyond)})")
+                           f"{_why(trial, keys, beyond, differs)})")
         # the allowance: the dependences the candidate leaves, fitted to what it leaves
         # and taken off both sides alike (the candidate is credited first)
         kept = tuple(v for v in allowance.structured_variables(
@@ -253,17 +254,57 @@ def _sized(fit: FitResult, key: str) -> bool:
     return (fit.assessment.why.get(key) or "").startswith("correlated:")
 
 
+#: A level of its own beside a base parameter shows an effect only where their
+#: difference lies more than this many standard errors from 0.
+DIFFERENCE_SIGMAS = 2.0
+
+
+def difference_stderr(fit: FitResult, key: str, base: str) -> float | None:
+    """The standard error of ``key − base`` in ``fit`` (None where ``key`` has none); a
+    base the fit holds or ties counts as exact."""
+    a = fit.assessment
+    se = fit.stderr.get(key)
+    if se is None:
+        return None
+    names = list(a.names)
+    se_base = fit.stderr.get(base) if base in names else None
+    if se_base is None or a.correlation is None:
+        return se
+    r = float(a.correlation[names.index(key), names.index(base)])
+    r = r if math.isfinite(r) else 0.0
+    return math.sqrt(max(se**2 + se_base**2 - 2.0 * r * se * se_base, 0.0))
+
+
+def _apart(fit: FitResult, key: str, base: str | None) -> bool:
+    """Whether ``key`` stands clear of ``base`` (:data:`DIFFERENCE_SIGMAS`): an
+    asymmetry whose negative Coulomb level is determined at the positive one's value
+    and whose other level is not determined shows no asymmetry. True without a base."""
+    if base is None:
+        return True
+    se = difference_stderr(fit, key, base)
+    gap = abs(fit.params[key] - fit.params[base])
+    return se is None or gap > DIFFERENCE_SIGMAS * se
+
+
 #: How a parameter came out not determined, in words.
 _WHY = {"at-bound": "on a bound of its range", "flat": "along a flat direction of the fit",
         "relative": "a standard error larger than its value",
         "artefact": "a standard error too small to be real"}
 
 
-def _why(fit: FitResult, keys, beyond) -> str:
+def _why(fit: FitResult, keys, beyond, differs=None) -> str:
     reasons = []
+    unit = fit.problem.data.unit("N")
     for key in keys:
         if key in beyond and fit.determined.get(key):
             reasons.append(f"{key} describes a part of the curve the data never show")
+            continue
+        base = (differs or {}).get(key)
+        if base and _sized(fit, key) and not _apart(fit, key, base):
+            gap = fit.params[key] - fit.params[base]
+            reasons.append(f"{key} − {base} = {gap:.3g} {unit} ± "
+                           f"{difference_stderr(fit, key, base):.2g} {unit}, within "
+                           f"{DIFFERENCE_SIGMAS:g} standard errors of 0")
             continue
         why = fit.assessment.why.get(key) or ""
         text = (f"tied to {why.split(':', 1)[1]}" if why.startswith("correlated:")

@@ -14,6 +14,7 @@ class Asymmetry(Effect):
               Param("Fs_neg", "N", lambda sc: (0.0, 20 * sc.force), gap_of="Fc_neg"))
     description = "separate Coulomb and Stribeck levels in the negative direction"
     regressor = {"timeseries": "v", "steady": "v", "breakaway": "direction"}
+    differs_from = {"Fc_neg": "Fc", "Fs_neg": "Fs"}
 
     def switched_off(self, params):
         return {**params, "Fc_neg": params["Fc"], "Fs_neg": params["Fs"]}

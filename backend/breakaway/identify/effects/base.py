@@ -132,6 +132,10 @@ class Effect:
 
     #: the parameter values that switch the effect off (its size is zero)
     off: dict = {}
+    #: size keys that are a level of their own beside a base parameter (the negative
+    #: direction's Coulomb level beside Fc): the effect's size is their difference,
+    #: shown only where it stands clear of 0
+    differs_from: dict = {}
 
     def switched_off(self, params: dict) -> dict:
         """``params`` with this effect switched off (:attr:`off`)."""
