@@ -351,3 +351,38 @@ def test_a_frame_painted_ahead_is_not_copied_once_the_graph_has_changed(explorer
         assert check["same"], plot
     explorer.ready()
     assert_plots_match_model(explorer, explorer.state())
+
+
+def test_inputs_of_the_mass_within_one_animation_frame_run_and_draw_the_ramp_once(explorer):
+    # a drag under a slow processor gives two or three inputs a frame: the ramp is run
+    # and drawn once, at the animation frame, for the last of them; Play's button is
+    # not written again by each answer
+    explorer.page.add_init_script(RECORD)
+    explorer.open("?sim=0")
+    page = explorer.page
+    page.evaluate("window.breakaway.rampReady()")
+    out = page.evaluate("""async () => {
+        const range = document.getElementById('m-range');
+        const plots = document.getElementById('plots');
+        const play = document.getElementById('ramp-play');
+        let playWrites = 0;
+        new MutationObserver((records) => { playWrites += records.length; })
+          .observe(play, {attributes: true, childList: true, characterData: true, subtree: true});
+        const before = Number(plots.dataset.rampFrame ?? 0);
+        await new Promise((resolve) => requestAnimationFrame(resolve));
+        const start = Number(range.value);
+        for (const step of [1, 2, 3]) {
+          range.value = String(start + step);
+          range.dispatchEvent(new Event('input', {bubbles: true}));
+        }
+        const wanted = window.breakaway.state().m;
+        await new Promise((resolve) => requestAnimationFrame(() => setTimeout(resolve)));
+        const drawn = Number(plots.dataset.rampFrame) - before;
+        const shown = window.breakaway.viewParams('ramp').m;
+        range.dispatchEvent(new Event('change', {bubbles: true}));
+        await window.breakaway.rampReady();
+        return {drawn, shown, wanted, playWrites};
+    }""")
+    assert out["drawn"] == 1
+    assert out["shown"] == out["wanted"]
+    assert out["playWrites"] == 0
