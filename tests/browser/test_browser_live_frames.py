@@ -386,3 +386,44 @@ def test_inputs_of_the_mass_within_one_animation_frame_run_and_draw_the_ramp_onc
     assert out["drawn"] == 1
     assert out["shown"] == out["wanted"]
     assert out["playWrites"] == 0
+
+
+def test_curves_that_stay_give_the_same_arrays_and_the_legend_follows_k(explorer):
+    # a drag of k: the figures of the curves that stay (the loop, the phase family) are
+    # the same arrays frame after frame, not made again; the legends name each frame's k
+    explorer.open("?sim=0")
+    page = explorer.page
+    same = page.evaluate("""async () => {
+        const { modelFrame } = await import('/js/models/model.js');
+        const { hysteresisFigure, phaseFigure } = await import('/js/plots/plots.js');
+        const { exploreBody } = await import('/js/page/state.js');
+        const state = window.breakaway.state();
+        const body = exploreBody(state);
+        const one = modelFrame(body);
+        const two = modelFrame({...body, k: body.k * 2});
+        const [h1, h2] = [hysteresisFigure(one, state), hysteresisFigure(two, state)];
+        const [p1, p2] = [phaseFigure(one, state), phaseFigure(two, {...state, k: body.k * 2})];
+        return {
+          loop: h1.data.every((trace, i) => trace.x === h2.data[i].x && trace.y === h2.data[i].y),
+          family: p1.data[0].x === p2.data[0].x && p1.data[0].y === p2.data[0].y,
+          current: p1.data[1].y !== p2.data[1].y,
+        }; }""")
+    assert same["loop"] and same["family"] and same["current"]
+    names = page.evaluate("""async () => {
+        const range = document.getElementById('k-range');
+        const names = [];
+        for (const step of [3, 6, 9]) {
+          range.value = String(Number(range.value) + step);
+          range.dispatchEvent(new Event('input', {bubbles: true}));
+          await new Promise((resolve) => requestAnimationFrame(() => setTimeout(resolve)));
+          names.push([...document.querySelectorAll('#plot-phase .legendtext, #plot-breakaway .legendtext')]
+            .map((text) => text.textContent).filter((text) => text.startsWith('current k')));
+        }
+        range.dispatchEvent(new Event('change', {bubbles: true}));
+        return names; }""")
+    explorer.ready()
+    settled = page.evaluate("""[...document.querySelectorAll('#plot-phase .legendtext, #plot-breakaway .legendtext')]
+        .map((text) => text.textContent).filter((text) => text.startsWith('current k'))""")
+    assert len({tuple(frame) for frame in names}) == 3  # each frame its own k
+    assert all(len(frame) == 2 for frame in names)
+    assert names[-1] == settled  # the last live frame's names are Plotly's
