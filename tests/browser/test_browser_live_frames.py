@@ -351,3 +351,79 @@ def test_a_frame_painted_ahead_is_not_copied_once_the_graph_has_changed(explorer
         assert check["same"], plot
     explorer.ready()
     assert_plots_match_model(explorer, explorer.state())
+
+
+def test_inputs_of_the_mass_within_one_animation_frame_run_and_draw_the_ramp_once(explorer):
+    # a drag under a slow processor gives two or three inputs a frame: the ramp is run
+    # and drawn once, at the animation frame, for the last of them; Play's button is
+    # not written again by each answer
+    explorer.page.add_init_script(RECORD)
+    explorer.open("?sim=0")
+    page = explorer.page
+    page.evaluate("window.breakaway.rampReady()")
+    out = page.evaluate("""async () => {
+        const range = document.getElementById('m-range');
+        const plots = document.getElementById('plots');
+        const play = document.getElementById('ramp-play');
+        let playWrites = 0;
+        new MutationObserver((records) => { playWrites += records.length; })
+          .observe(play, {attributes: true, childList: true, characterData: true, subtree: true});
+        const before = Number(plots.dataset.rampFrame ?? 0);
+        await new Promise((resolve) => requestAnimationFrame(resolve));
+        const start = Number(range.value);
+        for (const step of [1, 2, 3]) {
+          range.value = String(start + step);
+          range.dispatchEvent(new Event('input', {bubbles: true}));
+        }
+        const wanted = window.breakaway.state().m;
+        await new Promise((resolve) => requestAnimationFrame(() => setTimeout(resolve)));
+        const drawn = Number(plots.dataset.rampFrame) - before;
+        const shown = window.breakaway.viewParams('ramp').m;
+        range.dispatchEvent(new Event('change', {bubbles: true}));
+        await window.breakaway.rampReady();
+        return {drawn, shown, wanted, playWrites};
+    }""")
+    assert out["drawn"] == 1
+    assert out["shown"] == out["wanted"]
+    assert out["playWrites"] == 0
+
+
+def test_curves_that_stay_give_the_same_arrays_and_the_legend_follows_k(explorer):
+    # a drag of k: the figures of the curves that stay (the loop, the phase family) are
+    # the same arrays frame after frame, not made again; the legends name each frame's k
+    explorer.open("?sim=0")
+    page = explorer.page
+    same = page.evaluate("""async () => {
+        const { modelFrame } = await import('/js/models/model.js');
+        const { hysteresisFigure, phaseFigure } = await import('/js/plots/plots.js');
+        const { exploreBody } = await import('/js/page/state.js');
+        const state = window.breakaway.state();
+        const body = exploreBody(state);
+        const one = modelFrame(body);
+        const two = modelFrame({...body, k: body.k * 2});
+        const [h1, h2] = [hysteresisFigure(one, state), hysteresisFigure(two, state)];
+        const [p1, p2] = [phaseFigure(one, state), phaseFigure(two, {...state, k: body.k * 2})];
+        return {
+          loop: h1.data.every((trace, i) => trace.x === h2.data[i].x && trace.y === h2.data[i].y),
+          family: p1.data[0].x === p2.data[0].x && p1.data[0].y === p2.data[0].y,
+          current: p1.data[1].y !== p2.data[1].y,
+        }; }""")
+    assert same["loop"] and same["family"] and same["current"]
+    names = page.evaluate("""async () => {
+        const range = document.getElementById('k-range');
+        const names = [];
+        for (const step of [3, 6, 9]) {
+          range.value = String(Number(range.value) + step);
+          range.dispatchEvent(new Event('input', {bubbles: true}));
+          await new Promise((resolve) => requestAnimationFrame(() => setTimeout(resolve)));
+          names.push([...document.querySelectorAll('#plot-phase .legendtext, #plot-breakaway .legendtext')]
+            .map((text) => text.textContent).filter((text) => text.startsWith('current k')));
+        }
+        range.dispatchEvent(new Event('change', {bubbles: true}));
+        return names; }""")
+    explorer.ready()
+    settled = page.evaluate("""[...document.querySelectorAll('#plot-phase .legendtext, #plot-breakaway .legendtext')]
+        .map((text) => text.textContent).filter((text) => text.startsWith('current k'))""")
+    assert len({tuple(frame) for frame in names}) == 3  # each frame its own k
+    assert all(len(frame) == 2 for frame in names)
+    assert names[-1] == settled  # the last live frame's names are Plotly's

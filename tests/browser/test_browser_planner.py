@@ -43,6 +43,24 @@ def test_the_page_finds_the_planners_band(explorer, p, F_hat):
     assert js_band(explorer, {**p, "Fs": p["Fc"]}, F_hat) is None
 
 
+def test_the_band_is_kept_by_the_parameters_it_depends_on(explorer):
+    # the page makes a band once per key (bandKey): the rate k and the mass m, which a
+    # drag moves, leave the band as it is; each parameter of the curve moves it
+    explorer.open("?sim=0")
+    p = dict(Fc=1.0, Fs=1.5, V=5.0, delta=2.0, sigma=0.001, s=1.0, z_ba=0.9, k=2.0, m=1e-4, F_hat="self")
+    same, keys = explorer.page.evaluate("""async (p) => {
+        const { bandKey, rateBand } = await import('/js/models/sensitivity.js');
+        const moved = {...p, k: 17.5, m: 3e-3};
+        const changed = {Fc: 1.1, Fs: 1.6, V: 6, delta: 1.5, sigma: 0.01, s: 2, z_ba: 0.8, F_hat: 'avg'};
+        return [
+          bandKey(moved) === bandKey(p)
+            && JSON.stringify(rateBand(moved)) === JSON.stringify(rateBand(p)),
+          Object.entries(changed).map(([name, value]) => bandKey({...p, [name]: value}) !== bandKey(p)),
+        ]; }""", p)
+    assert same
+    assert all(keys)
+
+
 def test_the_band_is_shaded_and_said_and_moves_with_V(explorer):
     explorer.open("?sim=0")
     page = explorer.page

@@ -13,6 +13,13 @@ export const BAND_LEVEL = 0.5;
 const DECADES = 6;
 const POINTS = 1201;
 const STEP = 1e-5; // relative step of the central differences in ln V and ln δ
+/** The parameters the band depends on (with F̂): not the rate k, which it ranges over. */
+export const BAND_PARAMS = ["Fc", "Fs", "V", "delta", "sigma", "s", "z_ba"];
+
+/** Two sets of parameters with the same key have the same band. */
+export function bandKey(p, fHat = p.F_hat) {
+  return JSON.stringify([fHat, ...BAND_PARAMS.map((name) => p[name])]);
+}
 
 /**
  * The band of rates for the parameters `p` ({Fc, Fs, V, delta, sigma, s, z_ba}) with

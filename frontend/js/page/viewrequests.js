@@ -3,8 +3,10 @@
 //   settled  once a state's frame is settled, after the view's debounce, the previous
 //            request aborted (a slider that moves the model's curves: the view follows
 //            when the hand stops, as the simulations do);
-//   live     at once, when a change leaves the model's curves as they are (the mass m):
-//            then this view is what the hand explores. Two requests in flight at most,
+//   live     at the next animation frame, for the state then, when a change leaves the
+//            model's curves as they are (the mass m): then this view is what the hand
+//            explores (a drag's two or three inputs a frame under a slow processor ask
+//            once, not each for a run and a drawing). Two requests in flight at most,
 //            none aborted (a drag never starves); a hand that moved on meanwhile is asked
 //            for when one lands; an answer older than the one shown is dropped.
 // A key press asks ahead for the answers one press away on either side. An answer for
@@ -40,7 +42,9 @@ function keep(map, name, value) {
 function run(id) {
   // flying: request number -> {controller, key}; shown: the number of the answer shown;
   // drawn: the key of the answer last drawn
-  runs[id] ??= { timer: null, flying: new Map(), count: 0, shown: 0, again: false, frames: 0, drawn: null };
+  runs[id] ??= {
+    timer: null, soon: null, flying: new Map(), count: 0, shown: 0, again: false, frames: 0, drawn: null,
+  };
   return runs[id];
 }
 
@@ -57,7 +61,7 @@ export function viewResult(id, state) {
 
 /** True while a view's request is due or on its way. */
 export function viewsBusy() {
-  return Object.values(runs).some((entry) => entry.timer || entry.flying.size);
+  return Object.values(runs).some((entry) => entry.timer || entry.soon || entry.flying.size);
 }
 
 function flying(entry, key) {
@@ -73,6 +77,8 @@ function cancel(view) {
   const entry = run(view.id);
   clearTimeout(entry.timer);
   entry.timer = null;
+  cancelAnimationFrame(entry.soon);
+  entry.soon = null;
   entry.again = false;
   abortFlying(entry);
   if (!viewsBusy()) flush("views");
@@ -126,17 +132,27 @@ async function ask(view, state, { live = false } = {}) {
     if (error.name !== "AbortError" && entry.flying.has(number)) view.onError?.(error);
   }
   if (entry.flying.delete(number)) {
-    if (entry.again) askLive(view);
+    if (entry.again) askNow(view);
     if (!viewsBusy()) flush("views");
   }
 }
 
-/** Ask at once for the current state, unless its answer is here or on its way: at most
- *  LIVE_FLYING requests at a time, then the state the hand is on when one lands. */
+/** Ask at the next animation frame for the state then (askNow). */
 function askLive(view) {
   const entry = run(view.id);
   clearTimeout(entry.timer);
   entry.timer = null;
+  entry.soon ??= requestAnimationFrame(() => {
+    entry.soon = null;
+    askNow(view);
+    if (!viewsBusy()) flush("views");
+  });
+}
+
+/** Ask for the current state, unless its answer is here or on its way: at most
+ *  LIVE_FLYING requests at a time, then the state the hand is on when one lands. */
+function askNow(view) {
+  const entry = run(view.id);
   const state = shownState();
   const key = keyOf(view, state);
   entry.again = false;

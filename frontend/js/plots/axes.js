@@ -39,6 +39,32 @@ function markerPad(trace) {
   return Math.max(largest / 1.6, 3);
 }
 
+/** The lowest and highest value of `values` an axis reaches (log: positive ones only). */
+function valueRange(values, log) {
+  let lo = Infinity;
+  let hi = -Infinity;
+  for (const value of values) {
+    if (value == null || !Number.isFinite(value)) continue;
+    if (log ? value > 0 && value < lo : value < lo && value > -FP_SAFE) lo = value;
+    if (value > hi && value < FP_SAFE) hi = value;
+  }
+  return [lo, hi];
+}
+
+/** valueRange of long arrays, by array: a live frame's curves that stay are the same
+ *  arrays (figures never change an array they were given), and are not read again. */
+const ranges = new WeakMap();
+const KEPT_FROM = 64;
+
+function keptRange(values, log) {
+  if (!Array.isArray(values) || values.length < KEPT_FROM) return valueRange(values, log);
+  const kept = ranges.get(values) ?? {};
+  ranges.set(values, kept);
+  const kind = log ? "log" : "linear";
+  kept[kind] ??= valueRange(values, log);
+  return kept[kind];
+}
+
 /**
  * The autorange of one axis over the visible traces [range in axis units: log10 for a
  * log axis]. `letter` "x" or "y"; `onAxis(trace)` whether the trace belongs to this
@@ -65,13 +91,7 @@ export function autorange(traces, letter, { length, log = false, onAxis = () => 
     const pad = markerPad(trace);
     // plotly.js scatter: lines alone do not pad x; y is padded by 5 %
     const padded = letter === "y" || mode.includes("markers") || mode.includes("text");
-    let lo = Infinity;
-    let hi = -Infinity;
-    for (const value of values) {
-      if (value == null || !Number.isFinite(value)) continue;
-      if (log ? value > 0 && value < lo : value < lo && value > -FP_SAFE) lo = value;
-      if (value > hi && value < FP_SAFE) hi = value;
-    }
+    const [lo, hi] = keptRange(values, log);
     for (const value of [lo, hi]) {
       if (!Number.isFinite(value) || (log && value <= 0)) continue;
       const l = log ? Math.log10(value) : value;

@@ -3,6 +3,10 @@
 // hidden while it shows, and the legend's names kept as the live figure names its traces.
 
 const legendNames = new WeakMap(); // graph -> the names a live frame last gave its legend
+/** Graph -> its legend's entries [{index: the trace's, text: its name's element}], found
+ *  once while a hand moves (a drag of k renames two legends every frame), found again
+ *  once Plotly has drawn the graph. */
+const legendItems = new WeakMap();
 
 /** Plotly's layers that the canvas stands in for, in the graph's first SVG. */
 const COVERED = [".bglayer", ".layer-below", ".cartesianlayer"];
@@ -70,6 +74,7 @@ export function clearLive(gd) {
   if (!isLive(gd)) return;
   gd.dataset.live = "false";
   legendNames.delete(gd); // Plotly's legend holds its own names again
+  legendItems.delete(gd);
   const { canvas } = layers(gd);
   if (canvas) canvas.style.display = "none";
   cover(gd, false);
@@ -81,11 +86,16 @@ export function renameLegend(gd, data) {
   const last = legendNames.get(gd);
   if (last && last.length === names.length && last.every((name, i) => name === names[i])) return;
   legendNames.set(gd, names);
-  for (const item of gd.querySelectorAll(".legend .traces")) {
-    const index = item.__data__?.[0]?.trace?.index;
+  let items = legendItems.get(gd);
+  if (!items || !items.every(({ text }) => text.isConnected)) {
+    items = [...gd.querySelectorAll(".legend .traces")].map((item) => ({
+      index: item.__data__?.[0]?.trace?.index, text: item.querySelector(".legendtext"),
+    })).filter(({ text }) => text);
+    legendItems.set(gd, items);
+  }
+  for (const { index, text } of items) {
     const name = data[index]?.name;
-    const text = item.querySelector(".legendtext");
-    if (text && typeof name === "string" && text.textContent !== name) {
+    if (typeof name === "string" && text.textContent !== name) {
       text.textContent = name;
       text.setAttribute("data-unformatted", name);
     }

@@ -3,7 +3,7 @@
 // parameters each is drawn with; under the break-away plot, the sentence on its shaded
 // band of rates (models/sensitivity.js), once a state settles.
 
-import { rateBand } from "../models/sensitivity.js";
+import { bandKey, rateBand } from "../models/sensitivity.js";
 import { captionOf } from "../page/controls.js";
 import { onComputeAhead, onFrameDrawn } from "../page/render.js";
 import { exploreBody } from "../page/state.js";
@@ -22,11 +22,12 @@ const QUASI_STATIC = [...STRIBECK, "s", "k", "z_ba"];
 const BANDS_KEPT = 4;
 const bands = new Map();
 
-/** The band of the state's parameters, computed once per set of them (1201 rates, four
- *  break-away forces each: a tenth of a live frame under a phone's processor). */
+/** The band of the state's parameters, computed once per set of those it depends on
+ *  (1201 rates, four break-away forces each: a tenth of a live frame under a phone's
+ *  processor; a drag of k, which the band does not depend on, computed it each frame). */
 function bandOf(state) {
   const body = exploreBody(state);
-  const key = JSON.stringify(body);
+  const key = bandKey(body);
   if (!bands.has(key)) {
     bands.set(key, rateBand(body, body.F_hat));
     if (bands.size > BANDS_KEPT) bands.delete(bands.keys().next().value);

@@ -61,11 +61,19 @@ export function stribeckFigure(frame, state) {
   return { data, layout: baseLayout("stribeck", state, { showlegend: false }) };
 }
 
-/** The loop's branches coloured by the direction of travel (blue moving +x, orange
- *  moving −x: a colour-blind-safe pair), with arrowheads along them. */
-export function hysteresisFigure(frame, state) {
-  const { x, F } = frame.hysteresis;
-  const hovered = hoverXY(state, ["x", "m", ".3g"], ["F", "N", ".3g"]);
+/** Arrays a figure derives from a frame's curves, by the curves' object: a live frame
+ *  whose curves stay (a drag of k, z* or m leaves the loop as it is) gets the same
+ *  arrays, which the drawing then knows unchanged without comparing them point by
+ *  point, and which are not made again. */
+const derived = new WeakMap();
+
+function derivedOf(source, make) {
+  if (!derived.has(source)) derived.set(source, make());
+  return derived.get(source);
+}
+
+/** The loop split into its branches by the direction of travel, and its arrowheads. */
+function loopBranches({ x, F }) {
   const forward = { x: [], y: [] };
   const backward = { x: [], y: [] };
   const arrows = { x: [], y: [], symbol: [] };
@@ -91,6 +99,15 @@ export function hysteresisFigure(frame, state) {
     }
     previous = dir;
   }
+  return { forward, backward, arrows, arrowColors: arrows.symbol.map(
+    (s) => (s === "triangle-right" ? PALETTE.hysteresis.forward : PALETTE.hysteresis.backward)) };
+}
+
+/** The loop's branches coloured by the direction of travel (blue moving +x, orange
+ *  moving −x: a colour-blind-safe pair), with arrowheads along them. */
+export function hysteresisFigure(frame, state) {
+  const hovered = hoverXY(state, ["x", "m", ".3g"], ["F", "N", ".3g"]);
+  const { forward, backward, arrows, arrowColors } = derivedOf(frame.hysteresis, () => loopBranches(frame.hysteresis));
   const data = [
     { type: "scatter", mode: "lines", name: "moving +x", x: forward.x, y: forward.y,
       connectgaps: false, line: { color: PALETTE.hysteresis.forward, width: 1.8 },
@@ -100,8 +117,7 @@ export function hysteresisFigure(frame, state) {
       hovertemplate: `moving −x<br>${hovered}<extra></extra>` },
     { type: "scatter", mode: "markers", name: "direction of travel", x: arrows.x, y: arrows.y,
       hoverinfo: "skip", showlegend: false,
-      marker: { symbol: arrows.symbol, size: 8, color: arrows.symbol.map(
-        (s) => (s === "triangle-right" ? PALETTE.hysteresis.forward : PALETTE.hysteresis.backward)) } },
+      marker: { symbol: arrows.symbol, size: 8, color: arrowColors } },
   ];
   const layout = baseLayout("hysteresis", state, {
     legend: { x: 0, xanchor: "left", y: 1, bgcolor: "rgba(255,255,255,0.75)" },
@@ -109,14 +125,12 @@ export function hysteresisFigure(frame, state) {
   return { data, layout };
 }
 
-/**
- * Fig. 3: the family in grey (one trace, curves separated by gaps: one trace draws
- * faster than fifteen), the current k (the frame's last curve) highlighted.
- */
-export function phaseFigure(frame, state) {
-  const curves = frame.phase.curves;
-  const z = frame.phase.z;
-  const family = curves.slice(0, -1);
+/** The family's curves as one trace's points, gaps between them: made again only when
+ *  z or one of the curves is another object (a drag of k keeps them). */
+function familyTrace(z, family) {
+  const kept = family.length ? derived.get(family[0]) : null;
+  if (kept && kept.z === z && kept.family.length === family.length
+      && kept.family.every((curve, i) => curve === family[i])) return kept.value;
   const xs = [];
   const ys = [];
   const ks = [];
@@ -130,6 +144,20 @@ export function phaseFigure(frame, state) {
     ys.push(null);
     ks.push(null);
   }
+  const value = { xs, ys, ks };
+  if (family.length) derived.set(family[0], { z, family, value });
+  return value;
+}
+
+/**
+ * Fig. 3: the family in grey (one trace, curves separated by gaps: one trace draws
+ * faster than fifteen), the current k (the frame's last curve) highlighted.
+ */
+export function phaseFigure(frame, state) {
+  const curves = frame.phase.curves;
+  const z = frame.phase.z;
+  const family = curves.slice(0, -1);
+  const { xs, ys, ks } = familyTrace(z, family);
   const current = curves[curves.length - 1];
   const name = family.length
     ? `k = ${fmt(family[0].k)}, ${fmt(family[1]?.k)}, …, ${fmt(family[family.length - 1].k)}`
@@ -150,7 +178,11 @@ export function phaseFigure(frame, state) {
     },
   ];
   const zStar = Number(state.z_ba);
-  const [lo, hi] = extent(ys.concat(current.v), true);
+  // the family's extent once per family, beside the current curve's
+  const ends = [derivedOf(ys, () => extent(ys, true)), extent(current.v, true)]
+    .filter(([low]) => low !== null);
+  const lo = ends.length ? Math.min(...ends.map(([low]) => low)) : null;
+  const hi = ends.length ? Math.max(...ends.map(([, high]) => high)) : null;
   // marker lines are traces, not layout shapes: a shape costs a separate drawing pass
   data.push({
     type: "scatter", mode: "lines", name: `z* = ${fmt(zStar)}`,

@@ -8,7 +8,7 @@ import {
   explainBreakaway, rampBody, rampFigure, simulationPhaseTrace,
 } from "./ramp.js";
 import { rampExperiment } from "../models/rampmodel.js";
-import { $, app } from "../page/store.js";
+import { $, app, setAttr, setText } from "../page/store.js";
 import { drawView, viewResult } from "../page/viewrequests.js";
 import { registerOverlay, registerView } from "../page/views.js";
 
@@ -24,7 +24,7 @@ registerView({
   figure: ({ state, result }) => rampFigure(result, state, app.cursor),
   onResult: stopPlay,
   onDraw: (result, state) => {
-    $("ba-explain").textContent = explainBreakaway(result, state);
+    setText($("ba-explain"), explainBreakaway(result, state));
   },
   onError: (error) => {
     $("ba-explain").textContent = `The ramp experiment could not be simulated: ${error.message}`;
@@ -41,12 +41,14 @@ registerOverlay((figures, { state }) => {
   figures.phase = { ...figures.phase, data: [...figures.phase.data, trace] };
 });
 
+/** Play stopped (each new answer stops it): the button's words and state written only
+ *  when they change, as each answer of a drag of m would lay the page out anew. */
 function stopPlay() {
   if (app.playing) cancelAnimationFrame(app.playing);
   app.playing = null;
   app.cursor = null;
-  $("ramp-play").setAttribute("aria-pressed", "false");
-  $("ramp-play").textContent = "Play";
+  setAttr($("ramp-play"), "aria-pressed", "false");
+  setText($("ramp-play"), "Play");
 }
 
 /** Moves a time cursor from 0 to the break-away through the ramp and phase plots. */
