@@ -342,9 +342,10 @@ class Selection:
                                               f"named {nested[0]}, its special case: {why}")
             verdict = self.verdicts.setdefault(nested[0], Candidate())
             verdict.rmse, verdict.bic, verdict.accepted, verdict.reason = line.rmse, line.bic, True, None
-            curve_step = next(s for s in reversed(self.steps) if s.effect == effect)
-            self.steps.append(Step(nested[0], line, f"{curve_step.evidence}; named in its "
-                                   f"straight form, {nested[0]}: {why}", line_heldout))
+            curve_step = next((s for s in reversed(self.steps) if s.effect == effect), None)
+            evidence = f"{curve_step.evidence}; " if curve_step else ""
+            self.steps.append(Step(nested[0], line, f"{evidence}named in its straight form, "
+                                   f"{nested[0]}: {why}", line_heldout))
             return self.straighten(line, line_heldout)
         return current, current_heldout
 
