@@ -163,9 +163,15 @@ def retried_drop(fit: FitResult, noise: float) -> FitResult | None:
         return None
     # a drop that takes a Coulomb level to its bound is the curve's shape, not a level
     # the data show (a robot joint's rise bent by a "drop" from 2.3 N·m to 0)
-    if any(again.assessment.bound.get(low) for low, level in LEVELS if low in again.params):
+    if level_on_bound(again):
         return None
     return again
+
+
+def level_on_bound(fit: FitResult) -> bool:
+    """Whether a Coulomb level of ``fit`` (either direction's) ended on its bound: a fit
+    that needs that is bending the curve's shape, not reading a level."""
+    return any(fit.assessment.bound.get(low) for low, _ in LEVELS if low in fit.params)
 
 
 def without_drop(fit: FitResult, rows=None) -> FitResult:
@@ -199,5 +205,5 @@ def drop_bound_text(fit: FitResult, reason: str) -> dict[str, str]:
     return out
 
 
-__all__ = ["FALL_NOISE", "GAP_SIGMAS", "drop_bound_text", "largest_fall", "steady_curve",
-           "unresolved_drop", "without_drop"]
+__all__ = ["FALL_NOISE", "GAP_SIGMAS", "drop_bound_text", "largest_fall", "level_on_bound",
+           "steady_curve", "unresolved_drop", "without_drop"]

@@ -15,7 +15,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from .csvdata import Dataset
-from .drop import LEVELS
+from .drop import level_on_bound
 from .effects import EFFECTS
 from .fitting import (FitResult, best_base_starts, family, fit_model, fit_with_effect, refit,
                       weighted_rmse)
@@ -325,7 +325,7 @@ class Selection:
                 line = fit_model(self.data, straight, starts=[start], screen=1, **family(current))
             except (ValueError, FloatingPointError):
                 continue
-            if any(line.assessment.bound.get(low) for low, _ in LEVELS if low in line.params):
+            if level_on_bound(line):
                 # a line that takes a Coulomb level to its bound is no description of
                 # the curve (a convex rise met by a line through the origin)
                 continue
@@ -334,7 +334,7 @@ class Selection:
             why = f"its extra parameter does not earn its place beside the rest of the model: {beside}" \
                 if beside else None
             if why is None and effect == "viscous-power":
-                preferred, text = power_is_preferred(current, line, self.heldout(current), line_heldout)
+                preferred, text = power_is_preferred(current, line, current_heldout, line_heldout)
                 why = None if preferred else text
             if why is None:
                 continue
