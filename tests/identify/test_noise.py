@@ -8,12 +8,14 @@ import math
 import numpy as np
 import pytest
 
-from breakaway.identify import identify
+from breakaway.identify import identify, parse_csv
 from breakaway.identify.fitting import fit_model
-from breakaway.identify.noise import (carried_from_x, estimate, input_floor, input_weights,
-                                      is_command)
+from breakaway.identify.models import problem_for
+from breakaway.identify.noise import (carried_from_x, difference_sigma, estimate, input_floor,
+                                      input_weights, is_command, orderings, smooth_sigma)
 
 from . import cases
+from .rigzoo import gearbox_steady
 
 
 @pytest.mark.parametrize("count", [2e-6, 2e-5])
@@ -135,3 +137,27 @@ def test_a_measured_force_is_as_rough_where_the_reading_ticks_as_between():
     assert carried_from_x(problem_for(data)) == 0.0
     assert noise.method == "differences"
     assert noise.value == pytest.approx(0.003, rel=0.2)
+
+
+def test_a_steady_curves_floor_is_no_more_than_a_smooth_fit_leaves():
+    # a gearbox's σ·|v|^2.2 over 13 geometric set-points a direction: differences across
+    # the last, widely spaced ones read the curve's bend as noise (2.2× the scatter)
+    record = gearbox_steady(2000)
+    problem = problem_for(parse_csv(record.csv))
+    floor = estimate(problem)
+    scatter = record.truth["scatter"]
+    assert difference_sigma(problem.measured, orderings(problem)) > 2.0 * scatter
+    assert floor.method == "smooth fit"
+    assert floor.value == pytest.approx(scatter, rel=0.3)
+
+
+def test_a_smooth_fit_does_not_lower_a_floor_that_differences_read_right():
+    # a straight curve with dense set-points: differences are unbiased, and the smooth
+    # fit, no better, leaves them the floor (a minimum of estimates must not run low)
+    rng = np.random.default_rng(4)
+    v = np.concatenate([np.linspace(0.01, 1.0, 60), -np.linspace(0.01, 1.0, 60)])
+    F = np.sign(v) * (1.0 + 0.3 * np.abs(v)) + 0.02 * rng.standard_normal(v.size)
+    text = "v,F\n" + "\n".join(f"{a:.6g},{b:.6g}" for a, b in zip(v, F))
+    floor = estimate(problem_for(parse_csv(text)))
+    assert floor.value == pytest.approx(0.02, rel=0.25)
+    assert smooth_sigma(problem_for(parse_csv(text))) == pytest.approx(0.02, rel=0.25)

@@ -6,6 +6,10 @@
 - Otherwise F is taken as smooth along its regressor (time, speed, rate): robust (MAD)
   second and third differences; each is unbiased for white noise and too high where F
   curves, so the smaller is taken.
+- The floor never exceeds what a smooth function of the regressor leaves of F: a steady
+  curve's set-points are spaced unevenly (often geometrically), and where a gearbox's
+  σ·|v|ⁿ rises steeply between the last few, differences along them read the curve as
+  noise (:func:`smooth_sigma`).
 - A force computed from the encoder's reading steps where the reading ticks: what it
   carries from x (:func:`carried_from_x`) is noise of the column too, and the floor is
   never below it.
@@ -57,13 +61,19 @@ CONTROLLER_R2 = 0.9
 CONTROLLER_LAGS = 16
 #: ... the fast parts being what a local quadratic over this many samples leaves.
 FAST_WINDOW = 9
+#: The highest degree of the polynomial in ln|v| that :func:`smooth_sigma` fits to one
+#: direction of a steady curve (the degree is chosen by generalised cross-validation) ...
+SMOOTH_MAX_DEGREE = 9
+#: ... keeping at least this many rows more than its coefficients.
+SMOOTH_SPARE_ROWS = 4
 
 
 @dataclass
 class NoiseFloor:
     """The estimate and how it was made.
 
-    ``method`` is ``"replicates"``, ``"differences"``, ``"carried from x"``
+    ``method`` is ``"replicates"``, ``"differences"``, ``"smooth fit"``
+    (:func:`smooth_sigma`), ``"carried from x"``
     (:func:`carried_from_x`) or ``"quantisation"``;
     ``quantum_F`` the step of the force column (0 if none); ``smooth_F`` the differences
     estimate of F alone; ``command`` whether the force column is a command
@@ -159,6 +169,39 @@ def difference_sigma(values, groupings) -> float:
     return min(estimates) if estimates else math.nan
 
 
+def smooth_sigma(problem) -> float:
+    """The noise std [N] that a smooth function of the regressor leaves of F: for a
+    steady curve, per direction, a polynomial in ln|v| (the Stribeck drop and a power
+    law are smooth there) of the degree that minimises the generalised cross-validation
+    score ``n·RSS/(n − p)²``, the residual pooled with its degrees of freedom. NaN for
+    other kinds, or where no direction has rows to spare.
+
+    Unlike differences along the rows it does not take the curve's bend between widely
+    spaced set-points for noise, and it is unbiased where the polynomial holds the
+    curve; where it does not, it is too high, and the floor keeps the smaller estimate.
+    """
+    if problem.kind != "steady":
+        return math.nan
+    v, F = problem.v, problem.measured
+    rss, spent, rows = 0.0, 0, 0
+    for side in (v < 0, v > 0):
+        n = int(np.count_nonzero(side))
+        degrees = range(1, min(SMOOTH_MAX_DEGREE, n - SMOOTH_SPARE_ROWS - 1) + 1)
+        if not degrees:
+            continue
+        u = np.log(np.abs(v[side]))
+        u = (u - u.mean()) / (u.std() or 1.0)
+        best = None
+        for degree in degrees:
+            fitted = np.polynomial.polynomial.Polynomial.fit(u, F[side], degree)
+            part = float(np.sum((F[side] - fitted(u)) ** 2))
+            score = n * part / (n - degree - 1) ** 2
+            if best is None or score < best[0]:
+                best = (score, part, degree + 1)
+        rss, spent, rows = rss + best[1], spent + best[2], rows + n
+    return math.sqrt(rss / (rows - spent)) if rows > spent else math.nan
+
+
 def carried_from_x(problem) -> float:
     """The noise [N] a force column carries from the position's reading: 0 for a
     measured force.
@@ -211,6 +254,9 @@ def estimate(problem) -> NoiseFloor:
         break
     if not math.isfinite(floor):
         floor = smooth
+        fitted = smooth_sigma(problem)
+        if fitted < floor:
+            floor, method = fitted, "smooth fit"
     carried = carried_from_x(problem)
     if carried > floor:
         floor, method = carried, "carried from x"
@@ -341,4 +387,5 @@ def input_weights(errors, noise: float) -> np.ndarray | None:
 
 
 __all__ = ["NoiseFloor", "input_weights", "carried_from_x", "computed_from_x", "difference_sigma", "estimate", "input_floor",
-           "is_command", "noise_floor", "orderings", "programmed_force", "turn_share"]
+           "is_command", "noise_floor", "orderings", "programmed_force", "smooth_sigma",
+           "turn_share"]
