@@ -39,7 +39,8 @@ from .outliers import spike_rows
 from .preparation import SetAside, prepare, without_spikes
 from .residuals import is_white, residual_structure
 from .screening import FULL_REFIT_EVALUATIONS, needs_screening, screening_blocks
-from .selection import Candidate, Selection, Step
+from .selection import Selection
+from .verdicts import Candidate, Step
 from .warnings.beyond_data import beyond_data, beyond_data_warnings, mark_beyond
 from .warnings.data import data_warnings
 from .warnings.fit import fit_warnings

@@ -8,17 +8,15 @@ effect for a close rival that explains the data better).
 Between candidates that explain the data equally well (their BICs within
 :data:`~.judgement.MIN_BIC_DROP`) the one with fewer parameters is named: an offset is
 nested in an asymmetry up to the virgin branch, and a direction difference that one
-constant describes needs no second level."""
+constant describes needs no second level. A curve that holds a line as a special case
+keeps its exponent only where the data ask for it (:mod:`.curves`)."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 from .csvdata import Dataset
-from .drop import level_on_bound
+from .curves import NestedCurves
 from .effects import EFFECTS
-from .fitting import (FitResult, best_base_starts, family, fit_model, fit_with_effect, refit,
-                      weighted_rmse)
+from .fitting import FitResult, best_base_starts, family, fit_model, fit_with_effect, refit
 from .indistinguishable import (
     EXCLUSIVE,
     close_rivals,
@@ -29,6 +27,7 @@ from .indistinguishable import (
 from .judgement import MIN_BIC_DROP, Judge
 from .residuals import is_white
 from .stability import unstable
+from .verdicts import Candidate, Step
 
 #: Evaluations per parameter of a candidate's screening fit.
 SCREEN_EVALUATIONS = 15
@@ -36,26 +35,7 @@ SCREEN_EVALUATIONS = 15
 PAIR_CANDIDATES = 3
 
 
-@dataclass
-class Step:
-    effect: str
-    fit: FitResult
-    evidence: str
-    heldout: float
-
-
-@dataclass
-class Candidate:
-    """The last verdict on one library effect."""
-
-    rmse: float | None = None
-    bic: float | None = None
-    heldout: float | None = None
-    accepted: bool = False
-    reason: str | None = None
-
-
-class Selection:
+class Selection(NestedCurves):
     """The state of one search: the data, the gates' verdicts, the steps taken."""
 
     def __init__(self, data: Dataset, noise: float, report):
@@ -91,27 +71,6 @@ class Selection:
         except (ValueError, FloatingPointError) as exc:
             self.verdicts[effect] = Candidate(reason=f"the fit failed: {exc}")
             return None
-
-    def _extend_nested(self, current, trials):
-        """A candidate that holds another as a special case (a curve with n = 1 is the
-        straight line) fits at least as well as it: where its own starts fell short
-        (a curve trapped in a basin five times worse than the line), it is fitted again
-        from where the other ended."""
-        for effect, trial in list(trials.items()):
-            nested = EFFECTS[effect].extends
-            if nested is None or nested[0] not in trials:
-                continue
-            inner = trials[nested[0]]
-            if weighted_rmse(trial) <= weighted_rmse(inner):
-                continue
-            kin = family(current)
-            try:
-                again = fit_model(self.data, trial.effects, starts=[{**inner.params, **nested[1]}],
-                                  screen=1, fixed=kin["fixed"], ties=kin["ties"])
-            except (ValueError, FloatingPointError):
-                continue
-            if weighted_rmse(again) < weighted_rmse(trial):
-                trials[effect] = again
 
     def forward(self, base: FitResult, available: list[str]) -> tuple[FitResult, float]:
         """Add effects one round at a time while the residual is not white."""
@@ -233,27 +192,6 @@ class Selection:
                                        f"named {named} by the rule for the two")
         return [e for e in passing if e != other]
 
-    def _settle_power(self, passing, trials, current_heldout):
-        """``viscous-power`` is named only when its n is clearly not 1 and the BIC and
-        the held-out error prefer it; otherwise ``viscous``."""
-        if "viscous-power" not in passing:
-            return passing
-        power, viscous = trials["viscous-power"], trials.get("viscous")
-        h_power = self.heldout(power)
-        self.verdicts["viscous-power"].heldout = h_power
-        if viscous is not None and "viscous" in passing:
-            h_viscous = self.heldout(viscous)
-            self.verdicts["viscous"].heldout = h_viscous
-        else:
-            h_viscous = current_heldout
-        preferred, why = power_is_preferred(power, viscous, h_power, h_viscous)
-        if preferred:
-            if "viscous" in self.verdicts:
-                self.verdicts["viscous"].reason = f"viscous-power describes the data better: {why}"
-            return [e for e in passing if e != "viscous"]
-        self.verdicts["viscous-power"].reason = f"named viscous, its straight form: {why}"
-        return [e for e in passing if e != "viscous-power"]
-
     def _choose_pair(self, current, current_heldout, trials):
         """Two effects that pass together when neither does alone."""
         promising = sorted((e for e in trials if trials[e].bic < current.bic),
@@ -307,46 +245,6 @@ class Selection:
                     current_heldout = self.heldout(reduced)
                     changed = True
                     break
-        return current, current_heldout
-
-    def straighten(self, current, current_heldout):
-        """A curve in the model that holds another as a special case (σ·|v|ⁿ holds
-        the line at n = 1) keeps its extra parameter only where it earns it beside every
-        other effect of the model, as an effect does beside the model: a curve chosen
-        in a round before the effects that came after (an inertia, an offset) can have
-        bent towards what they explain."""
-        for effect in current.effects:
-            nested = EFFECTS[effect].extends
-            if nested is None or nested[0] in current.effects:
-                continue
-            straight = tuple(nested[0] if e == effect else e for e in current.effects)
-            start = {k: v for k, v in current.params.items() if k not in nested[1]}
-            try:
-                line = fit_model(self.data, straight, starts=[start], screen=1, **family(current))
-            except (ValueError, FloatingPointError):
-                continue
-            if level_on_bound(line):
-                # a line that takes a Coulomb level to its bound is no description of
-                # the curve (a convex rise met by a line through the origin)
-                continue
-            line_heldout = self.heldout(line)
-            beside = self.judgement.judge(line, current).reason
-            why = f"its extra parameter does not earn its place beside the rest of the model: {beside}" \
-                if beside else None
-            if why is None and effect == "viscous-power":
-                preferred, text = power_is_preferred(current, line, current_heldout, line_heldout)
-                why = None if preferred else text
-            if why is None:
-                continue
-            self.verdicts[effect] = Candidate(current.rmse, current.bic, None, False,
-                                              f"named {nested[0]}, its special case: {why}")
-            verdict = self.verdicts.setdefault(nested[0], Candidate())
-            verdict.rmse, verdict.bic, verdict.accepted, verdict.reason = line.rmse, line.bic, True, None
-            curve_step = next((s for s in reversed(self.steps) if s.effect == effect), None)
-            evidence = f"{curve_step.evidence}; " if curve_step else ""
-            self.steps.append(Step(nested[0], line, f"{evidence}named in its straight form, "
-                                   f"{nested[0]}: {why}", line_heldout))
-            return self.straighten(line, line_heldout)
         return current, current_heldout
 
     def swap(self, current, current_heldout, available):
@@ -404,4 +302,4 @@ def by_parsimony(passing, trials) -> list[str]:
     return close + [e for e in ranked if e not in close]
 
 
-__all__ = ["Candidate", "by_parsimony", "PAIR_CANDIDATES", "SCREEN_EVALUATIONS", "Selection", "Step"]
+__all__ = ["by_parsimony", "PAIR_CANDIDATES", "SCREEN_EVALUATIONS", "Selection"]

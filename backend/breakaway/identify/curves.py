@@ -1,0 +1,105 @@
+"""The rule for nested curves: a candidate that holds another as a special case (σ·|v|ⁿ
+holds the line σ·|v| at n = 1) fits at least as well as it, and so keeps its extra
+parameter only where the data ask for it — the exponent clearly not 1, the BIC and the
+held-out error preferring the curve, in the round it comes in and again beside every
+effect accepted after it.
+
+:class:`NestedCurves` is the part of :class:`~.selection.Selection` that applies it."""
+
+from __future__ import annotations
+
+from .drop import level_on_bound
+from .effects import EFFECTS
+from .fitting import family, fit_model, weighted_rmse
+from .indistinguishable import power_is_preferred
+from .verdicts import Candidate, Step
+
+
+class NestedCurves:
+    """The nested-curve rule of a :class:`~.selection.Selection` (its data, judgement,
+    verdicts and steps)."""
+
+    def _extend_nested(self, current, trials):
+        """A candidate that holds another as a special case (a curve with n = 1 is the
+        straight line) fits at least as well as it: where its own starts fell short
+        (a curve trapped in a basin five times worse than the line), it is fitted again
+        from where the other ended."""
+        for effect, trial in list(trials.items()):
+            nested = EFFECTS[effect].extends
+            if nested is None or nested[0] not in trials:
+                continue
+            inner = trials[nested[0]]
+            if weighted_rmse(trial) <= weighted_rmse(inner):
+                continue
+            kin = family(current)
+            try:
+                again = fit_model(self.data, trial.effects, starts=[{**inner.params, **nested[1]}],
+                                  screen=1, fixed=kin["fixed"], ties=kin["ties"])
+            except (ValueError, FloatingPointError):
+                continue
+            if weighted_rmse(again) < weighted_rmse(trial):
+                trials[effect] = again
+
+    def _settle_power(self, passing, trials, current_heldout):
+        """``viscous-power`` is named only when its n is clearly not 1 and the BIC and
+        the held-out error prefer it; otherwise ``viscous``."""
+        if "viscous-power" not in passing:
+            return passing
+        power, viscous = trials["viscous-power"], trials.get("viscous")
+        h_power = self.heldout(power)
+        self.verdicts["viscous-power"].heldout = h_power
+        if viscous is not None and "viscous" in passing:
+            h_viscous = self.heldout(viscous)
+            self.verdicts["viscous"].heldout = h_viscous
+        else:
+            h_viscous = current_heldout
+        preferred, why = power_is_preferred(power, viscous, h_power, h_viscous)
+        if preferred:
+            if "viscous" in self.verdicts:
+                self.verdicts["viscous"].reason = f"viscous-power describes the data better: {why}"
+            return [e for e in passing if e != "viscous"]
+        self.verdicts["viscous-power"].reason = f"named viscous, its straight form: {why}"
+        return [e for e in passing if e != "viscous-power"]
+
+    def straighten(self, current, current_heldout):
+        """A curve in the model that holds another as a special case (σ·|v|ⁿ holds
+        the line at n = 1) keeps its extra parameter only where it earns it beside every
+        other effect of the model, as an effect does beside the model: a curve chosen
+        in a round before the effects that came after (an inertia, an offset) can have
+        bent towards what they explain."""
+        for effect in current.effects:
+            nested = EFFECTS[effect].extends
+            if nested is None or nested[0] in current.effects:
+                continue
+            straight = tuple(nested[0] if e == effect else e for e in current.effects)
+            start = {k: v for k, v in current.params.items() if k not in nested[1]}
+            try:
+                line = fit_model(self.data, straight, starts=[start], screen=1, **family(current))
+            except (ValueError, FloatingPointError):
+                continue
+            if level_on_bound(line):
+                # a line that takes a Coulomb level to its bound is no description of
+                # the curve (a convex rise met by a line through the origin)
+                continue
+            line_heldout = self.heldout(line)
+            beside = self.judgement.judge(line, current).reason
+            why = f"its extra parameter does not earn its place beside the rest of the model: {beside}" \
+                if beside else None
+            if why is None and effect == "viscous-power":
+                preferred, text = power_is_preferred(current, line, current_heldout, line_heldout)
+                why = None if preferred else text
+            if why is None:
+                continue
+            self.verdicts[effect] = Candidate(current.rmse, current.bic, None, False,
+                                              f"named {nested[0]}, its special case: {why}")
+            verdict = self.verdicts.setdefault(nested[0], Candidate())
+            verdict.rmse, verdict.bic, verdict.accepted, verdict.reason = line.rmse, line.bic, True, None
+            curve_step = next((s for s in reversed(self.steps) if s.effect == effect), None)
+            evidence = f"{curve_step.evidence}; " if curve_step else ""
+            self.steps.append(Step(nested[0], line, f"{evidence}named in its straight form, "
+                                   f"{nested[0]}: {why}", line_heldout))
+            return self.straighten(line, line_heldout)
+        return current, current_heldout
+
+
+__all__ = ["NestedCurves"]
