@@ -36,8 +36,8 @@ def test_the_page_finds_the_planners_band(explorer, p, F_hat):
     band = js_band(explorer, p, F_hat)
     expected = rate_band(**p, F_hat=F_hat)
     # both search the same grid of 1201 rates over 12 decades: an edge may differ by a
-    # step of the grid (2.3 %) where the page's central differences meet the analytic
-    # derivatives at the half-way level
+    # step of the grid (2.3 %) where the page's central differences (F̂ = self, whose ẋ*
+    # moves with V and δ) meet the analytic derivatives at the half-way level
     np.testing.assert_allclose(band["k"], expected["k"], rtol=0.024)
     np.testing.assert_allclose(band["speed"], expected["speed"], rtol=0.024)
     assert js_band(explorer, {**p, "Fs": p["Fc"]}, F_hat) is None

@@ -100,7 +100,10 @@ export function selfConsistentVelocity(c, p) {
 /** ẋ = c/F̂ with c = k/(s·|ln z|) (E12), F̂ one of Fc, Fs, avg, self. */
 function e12Velocity(c, p, fHat) {
   if (fHat === "self") return c > 0 ? selfConsistentVelocity(c, p) : 0;
-  const level = { Fc: p.Fc, Fs: p.Fs, avg: p.Fc + (p.Fs - p.Fc) / 2 }[fHat];
+  // a conditional, not a lookup in an object literal: this runs for every point of
+  // every break-away and phase curve of a live frame, and an object a call was the
+  // largest part of what a drag gave the garbage collector
+  const level = fHat === "Fc" ? p.Fc : fHat === "Fs" ? p.Fs : p.Fc + (p.Fs - p.Fc) / 2;
   return c / level;
 }
 

@@ -21,6 +21,18 @@ export function bandKey(p, fHat = p.F_hat) {
   return JSON.stringify([fHat, ...BAND_PARAMS.map((name) => p[name])]);
 }
 
+/** √((∂Fss/∂ln V)² + (∂Fss/∂ln δ)²) at speed `v` > 0 [N]: with y = (v/V)^δ, the drop
+ *  (Fs − Fc)·e^(−y) moves by (Fs − Fc)·y·e^(−y)·δ with ln V and by −(Fs − Fc)·y·e^(−y)·ln y
+ *  with ln δ. With a constant F̂, ẋ* does not depend on V or δ, and this is the
+ *  sensitivity of F_ba itself: one speed a rate, where differences took four forces
+ *  (a fifth of a live frame's script while Fc moved). y·e^(−y) is formed as
+ *  exp(ln y − y), which a large δ does not turn into 0·Infinity. */
+function dropSensitivity(v, p) {
+  const logY = p.delta * (Math.log(v) - Math.log(p.V));
+  const y = Math.exp(Math.min(logY, 700.0));
+  return (p.Fs - p.Fc) * Math.exp(logY - y) * Math.sqrt(p.delta * p.delta + logY * logY);
+}
+
 /**
  * The band of rates for the parameters `p` ({Fc, Fs, V, delta, sigma, s, z_ba}) with
  * F̂ = `fHat`: {k: [low, high], speed: [low, high], peak} (N/s, m/s), or null without a
@@ -38,12 +50,15 @@ export function rateBand(p, fHat = p.F_hat) {
   let peak = 0;
   for (let i = 0; i < POINTS; i += 1) {
     const k = centre * 10 ** (-DECADES + (2 * DECADES * i) / (POINTS - 1));
-    // four forces at each of 1201 rates, every live frame of a moving V or δ: no array
-    // made per rate
-    const byV = (breakawayForce(k, vUp, fHat) - breakawayForce(k, vDown, fHat)) / (2 * STEP);
-    const byDelta = (breakawayForce(k, dUp, fHat) - breakawayForce(k, dDown, fHat)) / (2 * STEP);
     rates[i] = k;
-    strength[i] = Math.sqrt(byV * byV + byDelta * byDelta);
+    if (fHat === "self") {
+      // ẋ* itself moves with V and δ: four forces at each rate, central differences
+      const byV = (breakawayForce(k, vUp, fHat) - breakawayForce(k, vDown, fHat)) / (2 * STEP);
+      const byDelta = (breakawayForce(k, dUp, fHat) - breakawayForce(k, dDown, fHat)) / (2 * STEP);
+      strength[i] = Math.sqrt(byV * byV + byDelta * byDelta);
+    } else {
+      strength[i] = dropSensitivity(breakawayVelocity(k, p, fHat), p);
+    }
     if (strength[i] > strength[peak]) peak = i;
   }
   if (!(strength[peak] > 0)) return null;

@@ -43,7 +43,9 @@ function markerPad(trace) {
 function valueRange(values, log) {
   let lo = Infinity;
   let hi = -Infinity;
-  for (const value of values) {
+  // an index, not an iterator: the curves of a live frame pass here point by point
+  for (let i = 0; i < values.length; i += 1) {
+    const value = values[i];
     if (value == null || !Number.isFinite(value)) continue;
     if (log ? value > 0 && value < lo : value < lo && value > -FP_SAFE) lo = value;
     if (value > hi && value < FP_SAFE) hi = value;

@@ -43,8 +43,12 @@ export function axesOf(gd, figure, traces) {
     const toPixel = letter === "x"
       ? (l) => size.l + ((l - r0) / (r1 - r0)) * size.w
       : (l) => size.t + size.h - ((l - r0) / (r1 - r0)) * size.h;
+    // the same map as pixel = offset + scale·value, which a line's thousands of points
+    // take without a call each (drawTrace)
+    const scale = letter === "x" ? size.w / (r1 - r0) : -size.h / (r1 - r0);
+    const offset = letter === "x" ? size.l - r0 * scale : size.t + size.h - r0 * scale;
     out[id] = {
-      key, letter, log, range, toPixel,
+      key, letter, log, range, toPixel, scale, offset,
       // on a log axis a line runs to a non-positive value far below the range (Plotly's
       // LOG_CLIP); a marker there is not drawn
       map: log ? (v, line = false) => {

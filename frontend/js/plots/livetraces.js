@@ -119,6 +119,34 @@ function strokeRun(ctx, px, py, start, end, base, size) {
   if (drawn !== end - 1 && end - 1 !== first) ctx.lineTo(px[end - 1], py[end - 1]);
 }
 
+/** The pixel coordinates of a line, in buffers kept between traces and frames: a new
+ *  pair a trace a frame was most of what drawing gave the garbage collector. */
+let pixels = [new Float64Array(0), new Float64Array(0)];
+
+function pixelBuffers(length) {
+  if (pixels[0].length < length) {
+    const size = 2 ** Math.ceil(Math.log2(length));
+    pixels = [new Float64Array(size), new Float64Array(size)];
+  }
+  return pixels;
+}
+
+/** The pixels of `values` on `axis` into `out` (NaN for a gap): a linear axis by its
+ *  scale and offset, a log axis through its map. */
+function fillPixels(out, values, axis) {
+  if (axis.log) {
+    for (let i = 0; i < values.length; i += 1) {
+      out[i] = values[i] == null ? NaN : axis.map(values[i], true);
+    }
+    return;
+  }
+  const { scale, offset } = axis;
+  for (let i = 0; i < values.length; i += 1) {
+    const value = values[i];
+    out[i] = value == null ? NaN : offset + scale * value;
+  }
+}
+
 export function drawTrace(ctx, trace, axes, font, size) {
   const xAxis = axes[trace.xaxis ?? "x"];
   const yAxis = axes[trace.yaxis ?? "y"];
@@ -149,12 +177,9 @@ export function drawTrace(ctx, trace, axes, font, size) {
     ctx.strokeStyle = line.color ?? "#1f77b4";
     ctx.beginPath();
     const tolerance = Math.max(width, 3) / 4;
-    const px = new Float64Array(xs.length);
-    const py = new Float64Array(xs.length);
-    for (let i = 0; i < xs.length; i += 1) {
-      px[i] = xs[i] == null ? NaN : xAxis.map(xs[i], true);
-      py[i] = ys[i] == null ? NaN : yAxis.map(ys[i], true);
-    }
+    const [px, py] = pixelBuffers(xs.length);
+    fillPixels(px, xs, xAxis);
+    fillPixels(py, ys, yAxis);
     // each run of drawable points, up to a gap
     for (let start = 0; start < xs.length;) {
       while (start < xs.length && !(Number.isFinite(px[start]) && Number.isFinite(py[start]))) start += 1;

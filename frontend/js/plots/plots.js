@@ -131,18 +131,23 @@ function familyTrace(z, family) {
   const kept = family.length ? derived.get(family[0]) : null;
   if (kept && kept.z === z && kept.family.length === family.length
       && kept.family.every((curve, i) => curve === family[i])) return kept.value;
-  const xs = [];
-  const ys = [];
-  const ks = [];
+  // arrays of their final length, filled in place (grown push by push, they were the
+  // largest thing a drag of Fc allocated)
+  const length = family.length * (z.length + 1);
+  const xs = new Array(length);
+  const ys = new Array(length);
+  const ks = new Array(length);
+  let at = 0;
   for (const curve of family) {
-    for (let i = 0; i < z.length; i += 1) {
-      xs.push(z[i]);
-      ys.push(curve.v[i]);
-      ks.push(curve.k);
+    for (let i = 0; i < z.length; i += 1, at += 1) {
+      xs[at] = z[i];
+      ys[at] = curve.v[i];
+      ks[at] = curve.k;
     }
-    xs.push(null);
-    ys.push(null);
-    ks.push(null);
+    xs[at] = null;
+    ys[at] = null;
+    ks[at] = null;
+    at += 1;
   }
   const value = { xs, ys, ks };
   if (family.length) derived.set(family[0], { z, family, value });
