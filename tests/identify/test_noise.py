@@ -8,14 +8,14 @@ import math
 import numpy as np
 import pytest
 
-from breakaway.identify import identify, parse_csv
+from breakaway.identify import diagnose, identify, parse_csv, report
 from breakaway.identify.fitting import fit_model
 from breakaway.identify.models import problem_for
 from breakaway.identify.noise import (carried_from_x, difference_sigma, estimate, input_floor,
-                                      input_weights, is_command, orderings, smooth_sigma)
+                                      input_weights, is_command, misfit_ratio, orderings,
+                                      smooth_sigma)
 
-from . import cases
-from .rigzoo import gearbox_steady
+from . import cases, rigzoo
 
 
 @pytest.mark.parametrize("count", [2e-6, 2e-5])
@@ -142,7 +142,7 @@ def test_a_measured_force_is_as_rough_where_the_reading_ticks_as_between():
 def test_a_steady_curves_floor_is_no_more_than_a_smooth_fit_leaves():
     # a gearbox's σ·|v|^2.2 over 13 geometric set-points a direction: differences across
     # the last, widely spaced ones read the curve's bend as noise (2.2× the scatter)
-    record = gearbox_steady(2000)
+    record = rigzoo.gearbox_steady(2000)
     problem = problem_for(parse_csv(record.csv))
     floor = estimate(problem)
     scatter = record.truth["scatter"]
@@ -161,3 +161,27 @@ def test_a_smooth_fit_does_not_lower_a_floor_that_differences_read_right():
     floor = estimate(problem_for(parse_csv(text)))
     assert floor.value == pytest.approx(0.02, rel=0.25)
     assert smooth_sigma(problem_for(parse_csv(text))) == pytest.approx(0.02, rel=0.25)
+
+
+def test_structure_behind_a_few_rows_that_the_reading_makes_uncertain_is_unexplained():
+    # a seal whose friction depends smoothly on position, read by a coarse encoder: x's
+    # reading sets newtons just after each reversal and nothing elsewhere; against the
+    # record's RMS (10.5 N beside an input floor of 10.1 N) the position dependence hid
+    record = rigzoo.families()["seal-drift"](2002)
+    diagnosis = diagnose(parse_csv(record.csv))
+    final, noise = diagnosis.final, diagnosis.noise
+    errors = final.problem.resolution_errors(final.params)
+    assert final.rmse < 1.3 * math.hypot(noise.value, diagnosis.input_floor)
+    assert misfit_ratio(final, noise, diagnosis.input_floor, errors) > 3.0
+    assert report(diagnosis)["unexplained"] is True
+
+
+def test_a_flat_record_read_by_a_coarse_encoder_is_not_unexplained():
+    # strokes of a dry slide, nothing outside the model: each row's misfit is what its
+    # reading and the load cell make of it
+    record = rigzoo.families()["flat-timeseries"](2002)
+    diagnosis = diagnose(parse_csv(record.csv))
+    errors = diagnosis.final.problem.resolution_errors(diagnosis.final.params)
+    ratio = misfit_ratio(diagnosis.final, diagnosis.noise, diagnosis.input_floor, errors)
+    assert 0.8 < ratio < 1.3
+    assert report(diagnosis)["unexplained"] is False

@@ -33,7 +33,7 @@ from .effects import availability
 from .fitting import FitResult, fit_model, refit
 from .models import problem_for, with_weights
 from .drop import drop_bound_text, retried_drop, unresolved_drop, without_drop
-from .noise import (NoiseFloor, estimate, input_floor, input_weights, is_command,
+from .noise import (NoiseFloor, estimate, input_floor, input_weights, is_command, misfit_ratio,
                     programmed_force)
 from .outliers import spike_rows
 from .preparation import SetAside, prepare, without_spikes
@@ -220,14 +220,17 @@ def _diagnose(data: Dataset, progress, set_aside: SetAside | None = None,
     beyond = beyond_data(final, noise.value, known)
     for fit in {id(f): f for f in (base, final, *(s.fit for s in steps))}.values():
         mark_beyond(fit, beyond if fit is final else beyond_data(fit, noise.value))
-    inputs = input_floor(final, noise)
+    errors = final.problem.resolution_errors(final.params) \
+        if final.problem.kind == "timeseries" else None
+    inputs = input_floor(final, noise, errors)
     # what the residual can fall to: the force's noise and what x's resolution sets
     expected = math.hypot(noise.value, inputs)
     white = is_white(final.residual(), final.problem, expected)
     structure = residual_structure(final.residual(), final.problem, white)
     floor_low = [] if white else floor_low_warnings(final, expected, structure)
-    unexplained = (not white) and final.rmse > UNEXPLAINED_RATIO * expected \
-        and not floor_low
+    # structure is left where the rows' misfit exceeds their own expected errors
+    unexplained = (not white) and not floor_low \
+        and misfit_ratio(final, noise, inputs, errors) > UNEXPLAINED_RATIO
     warnings = list(prepared) + data_warnings(full_problem, noise, inputs) \
         + stick_slip_warnings(full_problem) + search.warnings \
         + beyond_data_warnings(beyond) + fit_warnings(final) \

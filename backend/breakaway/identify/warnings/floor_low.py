@@ -11,7 +11,9 @@ from ..fitting import FitResult
 from ..residuals import lag_one_correlation
 from . import warning
 
-#: Structure is "clear" when the final RMSE exceeds the noise floor by this factor.
+#: Structure is "clear" when the final residual exceeds what its rows are expected to
+#: carry by this factor (the RMSE the floor; the report's ``unexplained``:
+#: :func:`..noise.misfit_ratio`, row by row).
 UNEXPLAINED_RATIO = 1.3
 #: ... unless the residual is noise-like: successive residuals correlate less than this,
 #: and no variable explains more than :data:`NOISE_LIKE_SHARE` of it (noise whose
