@@ -11,9 +11,9 @@ import pytest
 from breakaway.identify import diagnose, identify, parse_csv, report
 from breakaway.identify.fitting import fit_model
 from breakaway.identify.models import problem_for
-from breakaway.identify.noise import (carried_from_x, difference_sigma, estimate, input_floor,
-                                      input_weights, is_command, misfit_ratio, orderings,
-                                      smooth_sigma)
+from breakaway.identify.input_error import input_floor, input_weights, misfit_ratio
+from breakaway.identify.noise import (carried_from_x, difference_sigma, estimate, is_command,
+                                      orderings, smooth_sigma)
 
 from . import cases, rigzoo
 

@@ -33,8 +33,8 @@ from .effects import availability
 from .fitting import FitResult, fit_model, refit
 from .models import problem_for, with_weights
 from .drop import drop_bound_text, retried_drop, unresolved_drop, without_drop
-from .noise import (NoiseFloor, estimate, input_floor, input_weights, is_command, misfit_ratio,
-                    programmed_force)
+from .input_error import input_floor, input_weights, misfit_ratio
+from .noise import NoiseFloor, estimate, is_command, programmed_force
 from .outliers import spike_rows
 from .preparation import SetAside, prepare, without_spikes
 from .residuals import is_white, residual_structure

@@ -20,7 +20,7 @@ rows it was not fitted to, block by block (:mod:`.heldout`):
    the blocks stays positive without its best block (a stand-in that absorbs part of a
    misfit outside the library helps where the two line up and hurts elsewhere);
 4. rows where the resolution of x makes the prediction uncertain (just after a reversal,
-   where (E6') is steep) count for less in both (:func:`.noise.input_weights`): a gain
+   where (E6') is steep) count for less in both (:func:`.input_error.input_weights`): a gain
    there may be the reading of x, not friction;
 5. where the residual depends on a variable the model does not use, both sides carry
    the same allowance for that dependence (:mod:`.allowance`), so that a large unknown
@@ -43,7 +43,7 @@ from .effects import EFFECTS
 from .fitting import FitResult, smooth_order
 from .heldout import HeldOut, heldout_blocks, heldout_error
 from .identifiability import correlation_time
-from .noise import input_weights
+from .input_error import input_weights
 from .warnings.beyond_data import beyond_data
 
 #: A BIC drop of 10 is "very strong" evidence (Kass & Raftery 1995).

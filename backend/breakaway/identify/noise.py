@@ -18,7 +18,7 @@
 The floor is the noise of the measured force alone. A force column that is noise-free
 (a commanded force: the noise sits in x, :func:`is_command`) has the floor of its own
 resolution. What the resolution of x adds to the prediction error through the model is
-a different thing, the ``input_floor`` (:func:`input_floor`): it is reported beside the
+a different thing, the ``input_floor`` (:mod:`.input_error`): it is reported beside the
 floor, never added to it, and never a reason to refuse an effect.
 """
 
@@ -352,68 +352,6 @@ def is_command(problem, noise: NoiseFloor, residual) -> bool:
     return bool(quiet or programmed_force(problem, noise))
 
 
-def input_floor(fit, noise: NoiseFloor, errors=None) -> float:
-    """The share of ``fit``'s prediction error [N] that the resolution of x sets
-    (the report's ``input_floor``): the force error that re-reading the record with x's
-    step or noise causes through the model
-    (:meth:`~.models.timeseries.TimeseriesProblem.resolution_noise`; ``errors``, its
-    rows, where they are at hand); under a commanded force, at least the residual's own
-    short-range variation, which is that error seen directly. Never more than what the
-    residual leaves above the noise floor."""
-    problem = fit.problem
-    if problem.kind != "timeseries":
-        return 0.0
-    if errors is None:
-        errors = problem.resolution_errors(fit.params)
-    value = float(np.sqrt(np.mean(np.square(errors))))
-    if noise.command:
-        value = max(value, difference_sigma(fit.residual(), orderings(problem)))
-    room = math.sqrt(max(fit.rmse**2 - noise.value**2, 0.0))
-    return float(min(value, room))
-
-
-def misfit_ratio(fit, noise: NoiseFloor, inputs: float, errors=None) -> float:
-    """The residual of ``fit`` in units of the error each row is expected to carry:
-    ``√(mean(r_i²/(σ² + e_i²)))``, σ the noise floor, e_i the row's error that x's
-    resolution sets (``errors``,
-    :meth:`~.models.timeseries.TimeseriesProblem.resolution_errors`). About 1 where the
-    model explains the data down to their errors.
-
-    Rows are weighed by their own errors, not the record's RMS: x's reading sets a few
-    newtons just after each reversal of a seal and nothing elsewhere, and a position
-    dependence that the library lacks, several times the noise on every other row, hid
-    behind those few rows' share of the RMS (an RMSE of 10.5 N beside an input floor of
-    10.1 N). Under a commanded force the input floor is the residual's own short-range
-    variation (:func:`input_floor`), known for the record, not row by row: the RMSE is
-    set against it."""
-    if errors is None or fit.problem.kind != "timeseries" or noise.command:
-        expected = math.hypot(noise.value, inputs)
-        return fit.rmse / expected if expected > 0 else math.inf
-    r = fit.residual()
-    e2 = np.square(errors)
-    variance = noise.value**2 + e2
-    with np.errstate(divide="ignore", invalid="ignore"):
-        return float(np.sqrt(np.mean(np.where(variance > 0, r**2 / variance, np.inf))))
-
-
-def input_weights(errors, noise: float) -> np.ndarray | None:
-    """Each row's weight in a fit and a judgement, ``σ²/(σ² + e_i²)``: e_i the row's
-    force error [N] that x's resolution sets
-    (:meth:`~.models.timeseries.TimeseriesProblem.resolution_errors`: large just after
-    reversals, where (E6') is steep), σ the noise floor ``noise`` [N], or the median
-    row's e_i where that is larger. A row where the input makes the prediction
-    uncertain counts for less: its error may be the reading of x, not friction; the
-    weights single out such rows, so that at least half of the record keeps half its
-    weight (a force with no noise of its own, a command, would otherwise hand the whole
-    fit to the few rows where x's reading does not matter). None where x is exact
-    (every weight 1)."""
-    if errors is None or not np.any(errors > 0):
-        return None
-    floor = max(noise, float(np.median(errors)), 1e-12 * float(np.max(errors)))
-    return floor**2 / (floor**2 + np.square(errors))
-
-
-__all__ = ["NoiseFloor", "input_weights", "carried_from_x", "computed_from_x", "difference_sigma", "estimate", "input_floor",
-           "is_command", "misfit_ratio", "noise_floor", "orderings", "programmed_force",
-           "smooth_sigma",
+__all__ = ["NoiseFloor", "carried_from_x", "computed_from_x", "difference_sigma", "estimate",
+           "is_command", "noise_floor", "orderings", "programmed_force", "smooth_sigma",
            "turn_share"]

@@ -136,7 +136,7 @@ class Dataset:
     weights : numpy.ndarray or None
         Each row's weight in a fit, the inverse of its prediction variance relative to
         the force's (set by the diagnosis where x's resolution makes some rows' force
-        uncertain, :func:`~breakaway.identify.noise.input_weights`); None, the parser's
+        uncertain, :func:`~breakaway.identify.input_error.input_weights`); None, the parser's
         value: every row counts alike.
     """
 

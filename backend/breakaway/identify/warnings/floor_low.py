@@ -13,7 +13,7 @@ from . import warning
 
 #: Structure is "clear" when the final residual exceeds what its rows are expected to
 #: carry by this factor (the RMSE the floor; the report's ``unexplained``:
-#: :func:`..noise.misfit_ratio`, row by row).
+#: :func:`..input_error.misfit_ratio`, row by row).
 UNEXPLAINED_RATIO = 1.3
 #: ... unless the residual is noise-like: successive residuals correlate less than this,
 #: and no variable explains more than :data:`NOISE_LIKE_SHARE` of it (noise whose
