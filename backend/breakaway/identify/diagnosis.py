@@ -37,6 +37,7 @@ from .input_error import input_floor, input_weights, misfit_ratio
 from .noise import NoiseFloor, estimate, is_command, programmed_force
 from .outliers import spike_rows
 from .preparation import SetAside, prepare, without_spikes
+from .profile import confirm_correlated
 from .residuals import is_white, residual_structure
 from .screening import FULL_REFIT_EVALUATIONS, needs_screening, screening_blocks
 from .selection import Selection
@@ -216,16 +217,20 @@ def _diagnose(data: Dataset, progress, set_aside: SetAside | None = None,
                              carried=prepared)
     for name in final.effects:
         search.verdicts[name] = Candidate(final.rmse, final.bic, current_heldout, True, None)
-    known = drop_bound_text(final, dropless) if dropless else {}
-    beyond = beyond_data(final, noise.value, known)
-    for fit in {id(f): f for f in (base, final, *(s.fit for s in steps))}.values():
-        mark_beyond(fit, beyond if fit is final else beyond_data(fit, noise.value))
     errors = final.problem.resolution_errors(final.params) \
         if final.problem.kind == "timeseries" else None
     inputs = input_floor(final, noise, errors)
     # what the residual can fall to: the force's noise and what x's resolution sets
     expected = math.hypot(noise.value, inputs)
     white = is_white(final.residual(), final.problem, expected)
+    if white:
+        # with nothing left that the model lacks, no misfit moves an estimate along a
+        # valley of the fit: a correlated parameter is determined where its profile holds
+        confirm_correlated(final)
+    known = drop_bound_text(final, dropless) if dropless else {}
+    beyond = beyond_data(final, noise.value, known)
+    for fit in {id(f): f for f in (base, final, *(s.fit for s in steps))}.values():
+        mark_beyond(fit, beyond if fit is final else beyond_data(fit, noise.value))
     structure = residual_structure(final.residual(), final.problem, white)
     floor_low = [] if white else floor_low_warnings(final, expected, structure)
     # structure is left where the rows' misfit exceeds their own expected errors

@@ -3,7 +3,8 @@
 A parameter is not determined when it sits on a bound of its range, when it moves along
 a flat direction of the fit (a near-zero singular value of the column-scaled Jacobian),
 when its relative standard error exceeds 1, or when it is correlated above 0.99 with
-another parameter.
+another parameter (unless the residual is white and the fit's profile bears the
+standard error out: :mod:`.profile`).
 
 Standard errors stay valid when the model is wrong. The textbook ``s²·(JᵀJ)⁻¹`` holds for
 white residuals; on a real machine the residual is mostly what the model lacks, smooth
@@ -66,6 +67,9 @@ class Assessment:
     #: standard errors in the fit's coordinates where they differ from the parameter's
     #: own: the gap Fs − Fc of a Stribeck level carried above its Coulomb level
     gap_stderr: dict = field(default_factory=dict)
+    #: the textbook ``s²·(JᵀJ)⁻¹`` standard errors, before the block-robust sandwich
+    #: widens them: what the fit's curvature alone promises (:mod:`.profile`)
+    classic_stderr: dict = field(default_factory=dict)
 
 
 #: The residual's correlation time is summed until its autocorrelation falls below this.
@@ -162,6 +166,7 @@ def assess(problem, theta, jac, cost, n, active_mask=None, residual=None,
     biggest = float(norms.max()) if norms.size else 0.0
     empty = ~(norms > 1e-14 * biggest) if biggest > 0 else np.ones(p, dtype=bool)
     cov = np.full((p, p), np.nan)
+    curvature = np.full((p, p), np.nan)
     flat = empty.copy()
     live = np.flatnonzero(~empty)
     if live.size:
@@ -175,6 +180,7 @@ def assess(problem, theta, jac, cost, n, active_mask=None, residual=None,
         inv = (Vt[keep].T / S[keep] ** 2) @ Vt[keep]
         scaled = inv / np.outer(norms[live], norms[live])  # (JᵀJ)⁺ on the live columns
         classic = scaled * s2
+        curvature[np.ix_(live, live)] = classic
         if residual is not None:
             robust = scaled @ block_covariance(J[:, live], residual, order) @ scaled
             # each variance the larger of the two, correlations kept from the classic
@@ -194,6 +200,9 @@ def assess(problem, theta, jac, cost, n, active_mask=None, residual=None,
                   if problem._gap_base(name) and np.isfinite(cov[i, i]) and cov[i, i] > 0}
     cov_p = G @ np.nan_to_num(cov) @ G.T
     var = np.diag(cov_p)
+    textbook = np.diag(G @ np.nan_to_num(curvature) @ G.T)
+    classic_stderr = {name: math.sqrt(textbook[i]) for i, name in enumerate(names)
+                      if textbook[i] > 0}
     with np.errstate(invalid="ignore", divide="ignore"):
         corr = cov_p / np.sqrt(np.outer(var, var))
 
@@ -225,7 +234,7 @@ def assess(problem, theta, jac, cost, n, active_mask=None, residual=None,
         determined[name] = reason is None
         why[name] = reason
     return Assessment(stderr, determined, why, bound, correlated, tuple(names), corr,
-                      gap_stderr)
+                      gap_stderr, classic_stderr)
 
 
 def _power_law(problem, a: str, b: str) -> bool:
