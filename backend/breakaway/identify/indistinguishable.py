@@ -83,6 +83,13 @@ EXCLUSIVE = {"viscous": "viscous-power", "viscous-power": "viscous",
 POWER_SIGMAS = 3.0
 
 
+def _likelihood_distance(power, viscous) -> float:
+    """n's distance from 1 in standard errors by the likelihood ratio of the nested
+    fits: the root of ``N·ln(RSS_viscous/RSS_power)``."""
+    ratio = math.log(max(viscous.rmse, 1e-300) / max(power.rmse, 1e-300))
+    return math.sqrt(max(0.0, 2.0 * power.n * ratio))
+
+
 def power_is_preferred(power, viscous, heldout_power: float,
                        heldout_viscous: float) -> tuple[bool, str]:
     """The rule between ``viscous-power`` and ``viscous`` (fits of each, with their
@@ -94,17 +101,28 @@ def power_is_preferred(power, viscous, heldout_power: float,
     likelihood ratio's: the root of ``N·ln(RSS_viscous/RSS_power)``, which is n's
     distance from 1 in standard errors where both are defined. A curve bent beyond the
     range's end (a rise steeper at low speed than |v|^0.2 makes) is still not straight.
-    An n tied to σ is not determined, and the straight form is named; so is a curve that
-    lowers the RMSE by less than :data:`~.judgement.MIN_RMSE_GAIN` against it."""
+    The same for an n that moves with another parameter (a correlation above 0.99): its
+    standard error is the curvature at the optimum, which a long valley need not keep.
+    An n the data do not determine otherwise names the straight form; so does a curve
+    that lowers the RMSE by less than :data:`~.judgement.MIN_RMSE_GAIN` against it."""
     n, se = power.params["n"], power.stderr.get("n")
-    at_bound = power.assessment.why.get("n") == "at-bound"
-    if at_bound and viscous is not None:
-        ratio = math.log(max(viscous.rmse, 1e-300) / max(power.rmse, 1e-300))
-        distance = math.sqrt(max(0.0, 2.0 * power.n * ratio))
+    why = power.assessment.why.get("n") or ""
+    if why == "at-bound" and viscous is not None:
+        distance = _likelihood_distance(power, viscous)
         if distance <= POWER_SIGMAS:
             return False, (f"its exponent n = {n:.3g} sits on a bound of its range, and the "
                            f"straight line fits within {POWER_SIGMAS:g} standard errors of it")
         spread = "(on the bound of its range; its distance from 1 by the likelihood ratio)"
+    elif why.startswith("correlated:") and viscous is not None:
+        # n moves with another parameter along a long valley, where its standard error
+        # (the curvature at the optimum) may not hold far out; whether the curve is
+        # straight is the nested models' likelihood ratio, which needs no curvature
+        distance = _likelihood_distance(power, viscous)
+        other = why.split(":", 1)[1]
+        if distance <= POWER_SIGMAS:
+            return False, (f"its exponent n = {n:.3g} moves with {other}, and the straight "
+                           f"line fits within {POWER_SIGMAS:g} standard errors of the curve")
+        spread = f"(moving with {other}; its distance from 1 by the likelihood ratio)"
     else:
         if se is None or not power.determined.get("n", False):
             return False, f"its exponent n = {n:.3g} is not determined by these data"
