@@ -31,9 +31,6 @@ STEADY = ("gearbox-steady", "offset-steady", "flat-steady")
 #: issue 26 still gets wrong on the seeds tested here; benchmarks/realistic.py gives the
 #: figures on seeds never used while developing.
 KNOWN_GAPS: dict[tuple[str, int], str] = {
-    ("estimated-torque", 0): "offset not named beside inertia and viscous: the plain RMSE "
-                             "rises from 0.0751 to 0.0764 N·m (the gravity model's error "
-                             "along x trades with the bias)",
     ("seal-pressure", 0): "asymmetry named: the stiction peaks of the two directions sit "
                           "at the two ends of the travel, where the seal's position "
                           "dependence differs; the offset's 1.3 % "

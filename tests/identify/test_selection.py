@@ -266,6 +266,18 @@ def test_a_curve_chosen_before_the_effects_beside_it_must_still_earn_its_exponen
     r = report(diagnose(parse_csv(recording.csv)))
     assert "viscous" in r["effects"] and "viscous-power" not in r["effects"]
     assert "named viscous, its special case" in r["candidates"]["viscous-power"]["reason"]
+
+
+@pytest.mark.xfail(strict=True, reason="beside the straightened viscous term and the inertia "
+                   "the offset no longer passes the verdict (under the inertia's weights its "
+                   "gain is 5.5 % of an error whose rows move together over 135 samples), "
+                   "and Fc takes the bias: 1.25 N·m for 1.40")
+def test_the_bias_of_a_torque_estimate_stays_named_beside_a_straightened_curve():
+    from .rigzoo import families
+
+    recording = families()["estimated-torque"](2004)
+    r = report(diagnose(parse_csv(recording.csv)))
+    assert "offset" in r["effects"]
     assert r["final"]["params"]["Fc"] == pytest.approx(recording.truth["Fc"], rel=0.1)
 
 
@@ -291,3 +303,30 @@ def test_an_asymmetry_whose_levels_do_not_stand_apart_is_not_named():
     assert "asymmetry" not in r["effects"]
     assert "within 2 standard errors of 0" in r["candidates"]["asymmetry"]["reason"]
     assert r["final"]["params"]["Fc"] == pytest.approx(recording.truth["Fc"], rel=0.02)
+
+
+def test_an_effect_that_no_longer_earns_its_place_beside_the_rest_is_dropped():
+    # a gearbox driven through speed plateaus: an asymmetry accepted against a model
+    # whose straight viscous term misfits each direction differently; beside the model
+    # the search ends with, its levels no longer stand apart, and it goes
+    from .rigzoo import families
+
+    recording = families()["gearbox-timeseries"](2003)
+    r = report(diagnose(parse_csv(recording.csv)))
+    assert r["effects"] == ["viscous-power"]
+    assert r["candidates"]["asymmetry"]["reason"].startswith("no longer earns its place beside")
+    assert r["final"]["params"]["Fc"] == pytest.approx(recording.truth["Fc"], rel=0.02)
+
+
+def test_a_weighted_fits_gain_is_not_refused_for_the_plain_rmse():
+    # a joint moved by hand on a 0.18° encoder: the viscous term lowers the error of the
+    # rows the fit weighs (0.079 → 0.044 N·m) and raises the plain RMSE by 1 %, which is
+    # the tenth of the rows at turns whose prediction the encoder's counts leave open
+    from .rigzoo import families
+
+    recording = families()["hand-moved"](2000)
+    r = report(diagnose(parse_csv(recording.csv)))
+    assert r["effects"] == ["offset", "viscous"]
+    params, truth = r["final"]["params"], recording.truth
+    assert params["Fc"] == pytest.approx(truth["Fc"], rel=0.05)
+    assert params["sigma"] == pytest.approx(truth["sigma"], rel=0.2)

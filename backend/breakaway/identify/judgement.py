@@ -6,7 +6,10 @@ rows it was not fitted to, block by block (:mod:`.heldout`):
 
 1. the BIC on all rows falls by at least :data:`MIN_BIC_DROP` per added effect (very
    strong evidence, Kass & Raftery 1995) and the RMSE (rows weighted as in the fit) by
-   :data:`MIN_RMSE_GAIN`, the plain RMSE not rising; the
+   :data:`MIN_RMSE_GAIN`, the plain RMSE not rising by as much (where rows are
+   weighted, the plain RMSE is mostly the rows whose prediction x's resolution leaves
+   uncertain, which the likelihood weighs for little: a change smaller than an effect
+   must gain is not visible); the
    rows count as independent observations in units of the correlation time of what the
    candidate leaves (a misfit that moves over many rows is one observation, not many);
 2. the effect's size is determined by the fit (at least one of its size parameters, by
@@ -168,8 +171,12 @@ class Judge:
         # (rows weighted as in the fit), not one relative to what an allowance leaves
         before, after = self._rms(current.residual()), self._rms(trial.residual())
         unit = self.data.unit("N")
-        if trial.rmse > current.rmse:
-            # rows weighted alike, the error a reader sees must not rise either
+        # rows weighted alike, the error a reader sees must not rise visibly either (a
+        # change under the share an effect must gain is not visible: where rows are
+        # weighted, a plain RMSE 1 % up is the tenth of them, at turns, whose prediction
+        # the encoder's counts leave open)
+        visible = MIN_RMSE_GAIN if self.weights is not None else 0.0
+        if trial.rmse > (1 + visible) * current.rmse:
             return f"the RMSE rises from {current.rmse:.4g} to {trial.rmse:.4g} {unit}"
         if after > (1 - MIN_RMSE_GAIN) * before:
             weighted = " (rows weighted as in the fit)" if self.weights is not None else ""

@@ -227,7 +227,10 @@ class Selection(NestedCurves):
                 (second, pair, self.heldout(pair), self._evidence(second, first_fit, pair))]
 
     def backward(self, current, current_heldout, keep_one=True):
-        """Drop accepted effects that the others made redundant (parsimony); with
+        """Drop accepted effects that the others made redundant (parsimony), and those
+        that no longer pass the verdict an effect must pass beside the rest of the model
+        (an asymmetry accepted beside a straight viscous term, whose misfit differed by
+        direction, is worth 0.1 % of the error beside the curve that replaced it); with
         ``keep_one=False`` also the last (an effect accepted beside a part of the model
         that was then taken out)."""
         changed = True
@@ -237,10 +240,15 @@ class Selection(NestedCurves):
                 others = tuple(e for e in current.effects if e != effect)
                 reduced = fit_model(self.data, others, starts=[current.params], screen=1,
                                     **family(current))
-                if reduced.bic <= current.bic + MIN_BIC_DROP / 2:
-                    kept = ", ".join(others) or "the model without a Stribeck drop"
+                kept = ", ".join(others) or "the model without a Stribeck drop"
+                why = f"made redundant by {kept}" \
+                    if reduced.bic <= current.bic + MIN_BIC_DROP / 2 else None
+                if why is None and others:
+                    beside = self.judgement.judge(reduced, current).reason
+                    why = beside and f"no longer earns its place beside {kept}: {beside}"
+                if why:
                     self.verdicts[effect] = Candidate(reduced.rmse, reduced.bic, None, False,
-                                                      f"made redundant by {kept}")
+                                                      why)
                     current = reduced
                     current_heldout = self.heldout(reduced)
                     changed = True
