@@ -14,12 +14,21 @@ mid-range phone), the throttled run beside the plain one.
   slider. Figures for presses to the right, to the left, and for the turns.
 - slow keys: the same, at a person's uneven pace: 200–700 ms apart (seeded uniform), so
   that the settled Plotly drawing runs between presses and a press may land on it.
-- drag: 2 s of `input` events at 60 per second (a pointer dragging the slider) that
-  move it back and forth over up to 100 positions, then `change` (the release). The
-  events keep the clock's time, as a pointer's do whatever the page is doing: a page
-  that falls behind finds several waiting, and draws the last. (Each event once timed
-  from the one before, a page busy for 40 ms a frame was given 25 events a second and
-  no more, and its frames per second measured that pace, not the page.)
+- drag: a pointer dragging the slider for 2 s over 60–100 positions and back (a
+  triangle on the clock, position i of 120 at i/60 s), then `change` (the release). Its
+  inputs come as Chromium delivers a moving pointer's: one a frame, the latest position
+  (the events since the frame before coalesced), none when the slider did not move, at
+  the start of the frame, before its animation frame callbacks, so what the handler
+  asks for draws in that frame. A script cannot dispatch there (a callback asked for
+  during a frame's callbacks runs at the next frame), so the harness dispatches from a
+  callback that runs after the page's own, each frame, the position reached by then:
+  the page draws it at the next frame, where Chromium would have dispatched it. The
+  page's work a frame is the same (one input's handler, one frame); latency counts from
+  the dispatch, so it holds the wait for the frame that a pointer's event has. A page
+  that falls behind gets the position the hand has reached when it takes one. (Each
+  input from its own timer waited behind the frame then running and 4 ms more: a page
+  framing every 16.7 ms at 4× got an input every 35 ms, and frames per second measured
+  that pace; all overdue inputs in one timer task gave two handlers a frame.)
 
 The plots a slider's frames count are scrolled into view first, as a person watches
 them (a plot out of view is drawn live only when it comes into view). A frame counts
@@ -107,20 +116,37 @@ async ({name: slider, mode, presses, gaps, seconds, hz}) => {
   } else {
     const count = Math.round(seconds * hz);
     const start = Number(range.value);
-    const span = Math.min(100, Math.floor((range.max - range.min) / 4));
+    // at least a position a tick (count / 2 each way): the pointer moves it every frame
+    const span = Math.min(100, Math.max(count / 2, Math.floor((range.max - range.min) / 4)));
     const reach = start + span <= Number(range.max) ? span : -span;
-    range.dispatchEvent(new PointerEvent('pointerdown', {bubbles: true}));
-    const begin = performance.now();
-    for (let i = 1; i <= count; i++) {
-      await sleep(begin + (i * 1000) / hz - performance.now());
-      // there and back: a triangle over the drag
+    // the pointer's i-th position (of `count`, at `hz`): there and back, a triangle
+    const position = (i) => {
       const phase = i / count;
       const offset = Math.round(reach * (phase < 0.5 ? 2 * phase : 2 - 2 * phase));
-      range.value = String(start + (offset === 0 && i < count ? Math.sign(reach) : offset));
-      const t = performance.now();
-      range.dispatchEvent(new Event('input', {bubbles: true}));
-      inputs.push({t, value: window.breakaway.state()[name]});
-    }
+      return String(start + (offset === 0 && i < count ? Math.sign(reach) : offset));
+    };
+    range.dispatchEvent(new PointerEvent('pointerdown', {bubbles: true}));
+    const begin = performance.now();
+    // once a frame, after the page's own callbacks of that frame (this one asks for the
+    // next frame after its input made the page ask), the latest position the pointer has
+    // reached, if it moved the slider: the page draws it at the next frame
+    let moved = null;
+    await new Promise((resolve) => {
+      const dispatch = () => {
+        const reached = Math.min(count, Math.floor(((performance.now() - begin) * hz) / 1000));
+        const value = position(Math.max(1, reached));
+        if (value !== moved) {
+          moved = value;
+          range.value = value;
+          const t = performance.now();
+          range.dispatchEvent(new Event('input', {bubbles: true}));
+          inputs.push({t, value: window.breakaway.state()[name]});
+        }
+        if (reached < count) requestAnimationFrame(dispatch);
+        else resolve();
+      };
+      requestAnimationFrame(dispatch);
+    });
     range.dispatchEvent(new Event('change', {bubbles: true}));
     range.dispatchEvent(new PointerEvent('pointerup', {bubbles: true}));
   }
@@ -271,7 +297,7 @@ def main(argv=None) -> int:
                         run_variant(page, sliders, mode, args)
                     page.close()
             title = {"keys": "Key presses 150 ms apart", "slow": "Key presses 200–700 ms apart (settles in between)",
-                     "drag": "Pointer drags: 2 s of input events at 60/s, then the release"}[mode]
+                     "drag": "Pointer drags: 2 s, an input a frame (the latest position), then the release"}[mode]
             print(f"\n{title} (load average {load_average()}), event → frame showing the value [ms]:")
             if mode == "drag":
                 report_drags(results, sliders, rows)
