@@ -82,6 +82,17 @@ class FitResult:
         """Measured minus predicted F for every row [N]."""
         return self.problem.measured - self.prediction
 
+    @property
+    def weighted_rss(self) -> float:
+        """The fitted rows' residual sum of squares, weighted as in the fit
+        (:func:`row_scales`) [N²]: what the BIC is of."""
+        return _weighted_rss(self.problem, self.residual(), self.rows)
+
+
+def _weighted_rss(problem, residual, rows) -> float:
+    weighted = residual[rows] * row_scales(problem.data, rows)
+    return float(np.dot(weighted, weighted))
+
 
 def bic(rss: float, n: int, n_params: int) -> float:
     """Bayesian information criterion of a Gaussian least-squares fit."""
@@ -164,8 +175,7 @@ def weighted_rmse(fit: "FitResult") -> float:
 
 
 def _cost(problem, params, rows):
-    r = (problem.predict(params)[rows] - problem.measured[rows]) * row_scales(problem.data, rows)
-    value = float(np.dot(r, r))
+    value = _weighted_rss(problem, problem.predict(params) - problem.measured, rows)
     return value if math.isfinite(value) else math.inf
 
 
@@ -247,9 +257,9 @@ def fit_model(data: Dataset, effects=(), starts=None, rows=None, max_nfev=None,
     best = final if best is None or final.cost <= best.cost else best
     params = problem.to_params(best.x)
     prediction = problem.predict(params)
-    r = problem.measured[rows] - prediction[rows]
-    weighted = r * row_scales(data, rows)
-    rss = float(np.dot(weighted, weighted))
+    residual = problem.measured - prediction
+    r = residual[rows]
+    rss = _weighted_rss(problem, residual, rows)
     order = smooth_order(problem, rows)
     assessment = assess(problem, best.x, best.jac, best.cost, n, best.active_mask,
                         best.fun, order)

@@ -27,7 +27,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .fitting import FitError, FitResult, fit_model, row_scales
+from .fitting import FitError, FitResult, fit_model
 
 #: The profile is taken at this many standard errors either side ...
 PROFILE_STEP = 2.0
@@ -37,12 +37,6 @@ PROFILE_SHARE = 0.5
 STRIBECK_SHAPE = ("Fs", "Fs_neg", "V", "delta")
 #: Evaluations of each profile refit (it starts on the valley's linear prediction).
 PROFILE_EVALUATIONS = 40
-
-
-def _weighted_rss(fit: FitResult) -> float:
-    rows = fit.rows
-    r = fit.residual()[rows] * row_scales(fit.problem.data, rows)
-    return float(np.dot(r, r))
 
 
 def _profile_rise(fit: FitResult, name: str, held: float, slopes: dict, rss: float) -> float:
@@ -61,7 +55,7 @@ def _profile_rise(fit: FitResult, name: str, held: float, slopes: dict, rss: flo
                             fixed={**problem.fixed, name: held, **held_too}, ties=ties or None)
     except (FitError, ValueError):
         return 0.0
-    return _weighted_rss(profile) - rss
+    return profile.weighted_rss - rss
 
 
 def confirm_correlated(fit: FitResult) -> FitResult:
@@ -77,7 +71,7 @@ def confirm_correlated(fit: FitResult) -> FitResult:
     # bounds only say there is no drop, and describe nothing)
     if set(a.bound) - set(STRIBECK_SHAPE):
         return fit
-    rss = _weighted_rss(fit)
+    rss = fit.weighted_rss
     dof = max(fit.rows.size - len(a.names), 1)
     s2 = rss / dof
     for name in names:
