@@ -121,3 +121,21 @@ def test_a_drop_pressed_against_the_slowest_stribeck_velocity_is_no_drop():
                for w in report["warnings"])
     assert final["determined"]["Fc"]
     assert final["params"]["Fc"] == pytest.approx(recording.truth["level"], rel=0.01)
+
+
+def test_a_curves_bend_that_was_the_drops_is_named_in_the_straight_form():
+    # a short record of strokes at one plateau speed, whose truth is a drop from 6.94 to
+    # 5.23 N at 0.05 m/s and a straight rise: the drop only bends the rise over the speeds
+    # shown, so the search ends without it, at σ·|v|³ flat to the plateau; with a drop
+    # the straight line lowers the BIC by about 580 against that curve, and is named
+    from .rigzoo import families
+
+    recording = families()["short-viscous"](2003)
+    r = identify(parse_csv(recording.csv))
+    assert r["effects"] == ["viscous"]
+    assert r["candidates"]["viscous-power"]["reason"].startswith(
+        "named viscous, its special case: with a Stribeck drop the line")
+    params = r["final"]["params"]
+    assert params["Fs"] == pytest.approx(recording.truth["Fs"], rel=0.02)
+    assert params["Fs"] - params["Fc"] > 0.5
+    assert r["error_after"] < 0.9 * 0.1246  # the curve without the drop left 0.1246 N

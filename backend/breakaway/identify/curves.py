@@ -12,6 +12,7 @@ from .drop import level_on_bound
 from .effects import EFFECTS
 from .fitting import family, fit_model, weighted_rmse
 from .indistinguishable import power_is_preferred
+from .straight import straight_forms
 from .verdicts import Candidate, Step
 
 
@@ -67,16 +68,7 @@ class NestedCurves:
         other effect of the model, as an effect does beside the model: a curve chosen
         in a round before the effects that came after (an inertia, an offset) can have
         bent towards what they explain."""
-        for effect in current.effects:
-            nested = EFFECTS[effect].extends
-            if nested is None or nested[0] in current.effects:
-                continue
-            straight = tuple(nested[0] if e == effect else e for e in current.effects)
-            start = {k: v for k, v in current.params.items() if k not in nested[1]}
-            try:
-                line = fit_model(self.data, straight, starts=[start], screen=1, **family(current))
-            except (ValueError, FloatingPointError):
-                continue
+        for effect, line in straight_forms(self.data, current):
             if level_on_bound(line):
                 # a line that takes a Coulomb level to its bound is no description of
                 # the curve (a convex rise met by a line through the origin)
@@ -90,16 +82,35 @@ class NestedCurves:
                 why = None if preferred else text
             if why is None:
                 continue
-            self.verdicts[effect] = Candidate(current.rmse, current.bic, None, False,
-                                              f"named {nested[0]}, its special case: {why}")
-            verdict = self.verdicts.setdefault(nested[0], Candidate())
-            verdict.rmse, verdict.bic, verdict.accepted, verdict.reason = line.rmse, line.bic, True, None
-            curve_step = next((s for s in reversed(self.steps) if s.effect == effect), None)
-            evidence = f"{curve_step.evidence}; " if curve_step else ""
-            self.steps.append(Step(nested[0], line, f"{evidence}named in its straight form, "
-                                   f"{nested[0]}: {why}", line_heldout))
+            self._name_straight(effect, current, line, why, line_heldout)
             return self.straighten(line, line_heldout)
         return current, current_heldout
+
+    def _name_straight(self, effect, current, line, why, heldout):
+        """Record that the model ``line`` names the curve ``effect`` of ``current`` in
+        its straight form, for the reason ``why``."""
+        straight = EFFECTS[effect].extends[0]
+        self.verdicts[effect] = Candidate(current.rmse, current.bic, None, False,
+                                          f"named {straight}, its special case: {why}")
+        verdict = self.verdicts.setdefault(straight, Candidate())
+        verdict.rmse, verdict.bic, verdict.accepted, verdict.reason = line.rmse, line.bic, True, None
+        curve_step = next((s for s in reversed(self.steps) if s.effect == effect), None)
+        evidence = f"{curve_step.evidence}; " if curve_step else ""
+        self.steps.append(Step(straight, line, f"{evidence}named in its straight form, "
+                               f"{straight}: {why}", heldout))
+
+    def straightened_beside_drop(self, current, retried, heldout):
+        """Record a curve of ``current`` (a model without a drop) that ``retried``, the
+        same model with a Stribeck drop (:func:`~.drop.retried_drop`), names in its
+        straight form: the curve's bend was the drop's."""
+        for effect in current.effects:
+            nested = EFFECTS[effect].extends
+            if nested is None or effect in retried.effects or nested[0] not in retried.effects:
+                continue
+            self._name_straight(effect, current, retried, (
+                f"with a Stribeck drop the line describes the data better (the BIC falls by "
+                f"{current.bic - retried.bic:.1f} against the curve without one): the "
+                f"curve's bend was the drop's"), heldout)
 
 
 __all__ = ["NestedCurves"]

@@ -189,7 +189,9 @@ def _diagnose(data: Dataset, progress, set_aside: SetAside | None = None,
         # parameters as an effect does
         retried = retried_drop(current, noise.value)
         if retried is not None and search.judgement.needs_drop(current, retried) is None:
-            current, current_heldout, dropless = retried, search.heldout(retried), None
+            retried_heldout = search.heldout(retried)
+            search.straightened_beside_drop(current, retried, retried_heldout)
+            current, current_heldout, dropless = retried, retried_heldout, None
     if dropless:
         if not screen_base.problem.tied:
             screen_base = without_drop(screen_base)

@@ -27,6 +27,7 @@ import numpy as np
 from ..steady import stribeck_kernel
 from .effects import DELTA_BOUNDS
 from .fitting import FitResult, fit_model
+from .straight import straight_forms
 
 #: A drop within this many standard errors of Fs − Fc = 0 is not resolved.
 GAP_SIGMAS = 2.0
@@ -138,7 +139,23 @@ def retried_drop(fit: FitResult, noise: float) -> FitResult | None:
     (a curved viscous term rising fastest at low speed) never makes the curve fall, yet
     it can be there: on a gearbox's steady curve the model without it left 2.5 times
     the error of the one with it, Fc 44 % off. Whether such a drop is kept is the
-    judgement's, as for any added parameters; this fit is what it judges."""
+    judgement's, as for any added parameters; this fit is what it judges.
+
+    A curve of ``fit`` is retried in its straight form too (σ·|v| for σ·|v|ⁿ), and the
+    lower BIC of the two is returned: without a drop, the curve's bend can be the drop's
+    (a level held flat from rest to the plateau and then rising, |v|³ on a short record
+    whose truth is a drop and a line: the drop and the line there lowered the BIC by 578
+    against the curve), and beside the drop the curve's exponent, trading with it, can
+    leave the drop unresolved where the line does not."""
+    tried = [_with_drop(fit, noise)] + [_with_drop(line, noise) for _, line
+                                        in straight_forms(fit.problem.data, fit)]
+    return min((again for again in tried if again is not None), key=lambda again: again.bic,
+               default=None)
+
+
+def _with_drop(fit: FitResult, noise: float) -> FitResult | None:
+    """``fit``'s effects with a drop fitted afresh (:func:`retried_drop`), where the
+    data determine it."""
     problem, p = fit.problem, fit.params
     if "V" not in problem.names and "V" not in problem.fixed:
         return None

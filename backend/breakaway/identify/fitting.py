@@ -84,8 +84,7 @@ class FitResult:
 
     @property
     def weighted_rss(self) -> float:
-        """The fitted rows' residual sum of squares, weighted as in the fit
-        (:func:`row_scales`) [N²]: what the BIC is of."""
+        """The fitted rows' residual sum of squares as the fit weighs them [N²]."""
         return _weighted_rss(self.problem, self.residual(), self.rows)
 
 
@@ -258,8 +257,7 @@ def fit_model(data: Dataset, effects=(), starts=None, rows=None, max_nfev=None,
     params = problem.to_params(best.x)
     prediction = problem.predict(params)
     residual = problem.measured - prediction
-    r = residual[rows]
-    rss = _weighted_rss(problem, residual, rows)
+    r, rss = residual[rows], _weighted_rss(problem, residual, rows)
     order = smooth_order(problem, rows)
     assessment = assess(problem, best.x, best.jac, best.cost, n, best.active_mask,
                         best.fun, order)
