@@ -17,6 +17,7 @@ from .effects import EFFECTS
 from .identifiability import Assessment, assess
 from .models import Problem, problem_for
 from .noise import orderings
+from .starts import base_starts, effect_starts
 
 
 class FitError(ValueError):
@@ -96,54 +97,6 @@ def _weighted_rss(problem, residual, rows) -> float:
 def bic(rss: float, n: int, n_params: int) -> float:
     """Bayesian information criterion of a Gaussian least-squares fit."""
     return n * math.log(max(rss, 1e-300) / n) + n_params * math.log(n)
-
-
-# ---------------------------------------------------------------------------------
-# initial guesses from the data
-# ---------------------------------------------------------------------------------
-
-
-def _level_guesses(problem: Problem):
-    """Coulomb and Stribeck levels from the data (sliding plateaus and peaks)."""
-    kind = problem.data.kind
-    F = problem.measured
-    if kind == "breakaway":
-        lo, hi = np.percentile(F, [5, 95])
-        return max(float(lo), 1e-6 * problem.scales.force), max(float(hi), float(lo))
-    speed = np.abs(problem.v)
-    fast = speed >= np.percentile(speed, 70)
-    if kind == "timeseries":
-        along = np.sign(F) == problem.d
-        fast &= along
-    Fc = float(np.median(np.abs(F[fast]))) if np.any(fast) else problem.scales.force
-    Fs = float(np.percentile(np.abs(F), 98))
-    Fc = max(Fc, 1e-6 * problem.scales.force)
-    return Fc, max(Fs, Fc)
-
-
-def base_starts(problem: Problem) -> list[dict]:
-    """A grid of starting points for the base parameters (levels from the data)."""
-    Fc, Fs = _level_guesses(problem)
-    if problem.level_only:
-        return [{"Fc": float(np.median(problem.measured)), "Fs": float(np.median(problem.measured)),
-                 **problem.fixed}]
-    speeds = problem.scales.speed * np.array([0.03, 0.1, 0.3, 1.0])
-    starts = []
-    for V in speeds:
-        for delta in (1.0, 2.0):
-            p = {"Fc": Fc, "Fs": max(Fs, 1.02 * Fc), "V": float(V), "delta": delta}
-            if problem.data.kind == "timeseries":
-                for zs in (0.003, 0.01, 0.03, 0.1, 0.3, 1.0):
-                    # presliding distance 1/s as a fraction of the travel
-                    starts.append({**p, "s": 1.0 / (zs * problem.scales.travel)})
-            else:
-                starts.append(p)
-    return starts
-
-
-def effect_starts(problem: Problem, effect: str, current: dict, residual: np.ndarray) -> list[dict]:
-    """Starting values of one effect's parameters from the current residual."""
-    return EFFECTS[effect].starts(problem, current, residual)
 
 
 # ---------------------------------------------------------------------------------
@@ -398,5 +351,5 @@ def _evaluated_at(data, effects, params, rows, kin):
     return fit_model(data, effects, starts=[params], rows=rows, screen=1, max_nfev=1, **kin)
 
 
-__all__ = ["FitError", "FitResult", "base_starts", "best_base_starts", "bic", "effect_starts",
-           "family", "fit_model", "fit_with_effect", "refit", "row_scales", "weighted_rmse"]
+__all__ = ["FitError", "FitResult", "best_base_starts", "bic", "family", "fit_model",
+           "fit_with_effect", "refit", "row_scales", "weighted_rmse"]
