@@ -14,11 +14,15 @@ Every kind and effect that needs v or a takes them from here.
     over several counts instead of showing one count as a spike;
   - a is the curvature of a quadratic (Savitzky–Golay,
     :func:`scipy.signal.savgol_filter`; the same fit in t where the sampling is
-    uneven) over the narrowest window in which the error of x (``q/√12`` for steps of
-    q, the noise std otherwise, or what a short local fit leaves of x when that is
-    larger: :func:`position_error`) contributes at most :data:`NOISE_TO_SIGNAL` of a's
-    RMS (:func:`choose_window`): a wider window only smooths the signal, a narrower
-    one lets the counts through.
+    uneven) over at least the narrowest window in which the error of x (``q/√12`` for
+    steps of q, the noise std otherwise, or what a short local fit leaves of x when
+    that is larger: :func:`position_error`) contributes at most
+    :data:`NOISE_TO_SIGNAL` of a's RMS (:func:`choose_window`): a narrower one lets the
+    counts through. Each sample's window then widens for as long as the wider fits
+    agree with every narrower one within their errors (:func:`adaptive_windows`):
+    where a holds steady (a constant acceleration, a slow swing) the counts' share of
+    a falls as the window's length to the power 2.5, and where a changes quickly (a
+    jump at a start or a braking) the window stays short.
 """
 
 from __future__ import annotations
@@ -28,7 +32,7 @@ from dataclasses import dataclass
 
 import numpy as np
 from numba import njit
-from scipy.signal import savgol_coeffs, savgol_filter
+from scipy.signal import oaconvolve, savgol_coeffs, savgol_filter
 
 #: An adaptive window spans at least this many resolutions of x ...
 WINDOW_RESOLUTIONS = 8
@@ -188,7 +192,7 @@ class Derivatives:
     v: np.ndarray
     a: np.ndarray
     method: str  # "gradient" or "savgol"
-    window: int  # samples of a's local fit (3 for numpy.gradient's central difference)
+    window: int  # samples of a's narrowest local fit (3 for numpy.gradient's difference)
     order: int
     #: the time a slow sample's velocity is taken over (median over the slower half of
     #: the moving samples, where g of E2 is steep) [s]: no lag shorter than it can be
@@ -196,6 +200,9 @@ class Derivatives:
     velocity_span: float = 0.0
     #: the std of a [m/s²] that the resolution of x alone causes at the chosen window
     acceleration_noise: float = 0.0
+    #: each sample's window of a's local fit [samples] (:func:`adaptive_windows`), at
+    #: least :attr:`window`; None where a is not taken by local fits
+    windows: np.ndarray | None = None
 
     @property
     def acceleration_resolved(self) -> bool:
@@ -274,6 +281,34 @@ def smooth_fit(t, x, window: int, order: int = ORDER):
                  for k in (0, 1, 2))
 
 
+#: Windows of more samples than this are convolved by FFT (overlap-add): a direct
+#: convolution costs the window's length per sample.
+FFT_WINDOW = 64
+
+
+def curvature_fit(t, x, window: int) -> np.ndarray:
+    """a [m/s²] of ``x(t)`` alone from a local quadratic over ``window`` samples (what
+    :func:`local_fit` gives, without its velocity): on even sampling a Savitzky–Golay
+    filter, the long windows by FFT, the ends by the quadratic of the first and last
+    window as ``savgol_filter``'s ``mode="interp"`` does."""
+    t = np.ascontiguousarray(t, dtype=float)
+    x = np.ascontiguousarray(x, dtype=float)
+    window = min(window, x.size if x.size % 2 else x.size - 1)
+    dt = _uniform_step(t)
+    if dt is None:
+        return _local_quadratic(t, x, window // 2)[2]
+    if window <= FFT_WINDOW or x.size < 4 * window:
+        return savgol_filter(x, window, ORDER, deriv=2, delta=dt, mode="interp")
+    half = window // 2
+    coeffs = savgol_coeffs(window, ORDER, deriv=2, delta=dt, use="dot")
+    a = np.empty(x.size)
+    a[half:-half] = oaconvolve(x, coeffs[::-1], mode="valid")
+    a[:half] = savgol_filter(x[:window], window, ORDER, deriv=2, delta=dt, mode="interp")[:half]
+    a[-half:] = savgol_filter(x[-window:], window, ORDER, deriv=2, delta=dt,
+                              mode="interp")[-half:]
+    return a
+
+
 def acceleration_noise(window: int, resolution: float, dt: float, order: int = ORDER) -> float:
     """Std of a [m/s²] that a white error of ``resolution`` in x causes in a local fit
     of ``window`` samples at interval ``dt``."""
@@ -297,6 +332,64 @@ def choose_window(t, x, resolution: float, order: int = ORDER) -> int:
         if noise <= NOISE_TO_SIGNAL * signal:
             return window
     return fitting[-1]
+
+
+#: A wider window's a must lie within this many of its standard errors (what the error
+#: of x makes of it) of every narrower window's: the intersection of confidence
+#: intervals rule of adaptive smoothing (Goldenshluger & Nemirovski 1997; Katkovnik
+#: 1999). Three standard errors, as elsewhere in this engine: a window is widened over a
+#: real change of a only where that change is within the noise of the narrower fits.
+AGREEMENT = 3.0
+
+
+def adaptive_windows(t, x, error: float, narrowest: int) -> tuple[np.ndarray, np.ndarray]:
+    """Each sample's acceleration [m/s²] and window [samples]: the widest window of
+    :data:`WINDOWS`, from ``narrowest`` up, whose local fit's a lies within
+    :data:`AGREEMENT` standard errors of every narrower one's (the intervals
+    a ± AGREEMENT·std of all windows so far still intersect); the std is what a white
+    error of ``error`` [m] in x makes of a (:func:`acceleration_noise`).
+
+    A steady a is thus taken over a long window, where x's resolution hardly shows,
+    and a quick change over a short one, which keeps it. Once the intervals part, the
+    sample keeps the last window at which they met. (Windows that end or start at the
+    sample, which keep widening beside a jump of a, were tried: they mended one more
+    heavy carriage and put a ramp's corner, a jump of a the centred window spreads,
+    into an inertia and a lag on two joints.)"""
+    t = np.asanyarray(t, dtype=float)
+    x = np.asanyarray(x, dtype=float)
+    dt = float(np.median(np.diff(t)))
+    tried = [w for w in WINDOWS if narrowest <= w <= max(x.size // 4, narrowest)] or [narrowest]
+    low = np.full(x.size, -np.inf)
+    high = np.full(x.size, np.inf)
+    agreeing = np.ones(x.size, dtype=bool)
+    a = windows = None
+    for window in tried:
+        a_w = curvature_fit(t, x, window)
+        spread = AGREEMENT * acceleration_noise(window, error, dt)
+        np.maximum(low, a_w - spread, out=low)
+        np.minimum(high, a_w + spread, out=high)
+        agreeing &= low <= high
+        if a is None:
+            a, windows = a_w, np.full(x.size, window)
+        else:
+            a[agreeing] = a_w[agreeing]
+            windows[agreeing] = window
+        if not agreeing.any():
+            break
+    return a, windows
+
+
+def acceleration_at(t, x, windows) -> np.ndarray:
+    """a [m/s²] of ``x(t)``, each sample's from the local fit over its own window of
+    ``windows`` [samples] (those :func:`adaptive_windows` chose for another reading of
+    the same samples)."""
+    t = np.asanyarray(t, dtype=float)
+    x = np.asanyarray(x, dtype=float)
+    a = np.empty(x.size)
+    for window in np.unique(windows):
+        rows = windows == window
+        a[rows] = curvature_fit(t, x, int(window))[rows]
+    return a
 
 
 #: An acceleration is resolved when its RMS is at least this many times the part the
@@ -361,13 +454,22 @@ def derivatives(t, x, quantum: float = 0.0, noise: float = 0.0, blocks=None,
     parts = [velocity_and_span(t[i:j], x[i:j], resolution) for i, j in blocks]
     v = np.concatenate([part[0] for part in parts])
     spans = np.concatenate([part[1] for part in parts])
-    a = np.concatenate([local_fit(t[i:j], x[i:j], window)[1] if j - i >= WINDOWS[0]
-                        else np.gradient(v[i:j], t[i:j]) for i, j in blocks])
     first, last = max(blocks, key=lambda block: block[1] - block[0])
-    noise_a = acceleration_noise(window, position_error(t[first:last], x[first:last], quantum,
-                                                        noise),
-                                 float(np.median(np.diff(t[first:last]))))
-    return Derivatives(v, a, "savgol", window, ORDER, _span(v, spans), noise_a)
+    error = position_error(t[first:last], x[first:last], quantum, noise)
+    a, windows = np.empty(x.size), np.full(x.size, 3)
+    for i, j in blocks:
+        if j - i >= WINDOWS[0]:
+            a[i:j], windows[i:j] = adaptive_windows(t[i:j], x[i:j], error,
+                                                    min(window, _odd_at_most(j - i)))
+        else:
+            a[i:j] = np.gradient(v[i:j], t[i:j])
+    noise_a = acceleration_noise(window, error, float(np.median(np.diff(t[first:last]))))
+    return Derivatives(v, a, "savgol", window, ORDER, _span(v, spans), noise_a, windows)
+
+
+def _odd_at_most(n: int) -> int:
+    """The largest odd number not above ``n``."""
+    return n if n % 2 else n - 1
 
 
 def _span(v, spans) -> float:
@@ -380,4 +482,5 @@ def _span(v, spans) -> float:
 
 
 __all__ = ["position_error", "POSITION_RESOLUTIONS", "positions", "velocity_and_span", "smooth_fit", "block_velocity", "MAX_HALF_WINDOW", "WINDOW_RESOLUTIONS", "velocity", "Derivatives", "NOISE_TO_SIGNAL", "ORDER", "WINDOWS", "acceleration_noise",
-           "choose_window", "derivatives", "local_fit"]
+           "choose_window", "derivatives", "local_fit", "adaptive_windows", "acceleration_at", "curvature_fit",
+           "AGREEMENT"]

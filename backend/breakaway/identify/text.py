@@ -47,7 +47,8 @@ def format_report(report: dict, source: str | None = None) -> str:
             lines.append("v and a: numpy.gradient (x taken as exact)")
         else:
             lines.append(f"a: a Savitzky-Golay polynomial of order {derivatives['order']} over "
-                         f"{derivatives['window']} samples; v: {derivatives['velocity']}")
+                         f"{derivatives['window']} samples at the least, wider where a holds "
+                         f"steady; v: {derivatives['velocity']}")
     lines.append("")
     base = report["base"]
     lines.append(f"base model: RMSE {base['rmse']:.4g} {N}, BIC {base['bic']:.1f}")

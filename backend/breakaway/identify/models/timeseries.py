@@ -10,7 +10,8 @@ from scipy.ndimage import uniform_filter1d
 
 from ...presliding import _presliding_kernel
 from ...steady import stribeck_kernel
-from ..derivatives import WINDOWS, block_velocity, derivatives, local_fit, positions, smooth_fit
+from ..derivatives import (WINDOWS, acceleration_at, block_velocity, derivatives, positions,
+                           smooth_fit)
 from ..effects import engaged_presliding
 from ..kinematics import REVERSAL_STEPS, direction, position_noise, quantum
 from ..stickslip import find_stick_slip
@@ -119,10 +120,11 @@ class TimeseriesProblem(Problem):
         if self.derivatives.method == "gradient":
             return np.concatenate([np.gradient(np.gradient(x[a:b], self.t[a:b]), self.t[a:b])
                                    for a, b in self.blocks])
-        window = self.derivatives.window
+        windows = self.derivatives.windows
         v = self.kinematic_velocity(x)
-        return np.concatenate([local_fit(self.t[a:b], x[a:b], window)[1] if b - a >= WINDOWS[0]
-                               else np.gradient(v[a:b], self.t[a:b]) for a, b in self.blocks])
+        return np.concatenate([acceleration_at(self.t[a:b], x[a:b], windows[a:b])
+                               if b - a >= WINDOWS[0] else np.gradient(v[a:b], self.t[a:b])
+                               for a, b in self.blocks])
 
     def kinematic_direction(self, x, hysteresis=None):
         """Directions of a position record of the same samples, with this record's
