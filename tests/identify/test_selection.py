@@ -332,3 +332,28 @@ def test_a_weighted_fits_gain_is_not_refused_for_the_plain_rmse():
     params, truth = r["final"]["params"], recording.truth
     assert params["Fc"] == pytest.approx(truth["Fc"], rel=0.05)
     assert params["sigma"] == pytest.approx(truth["sigma"], rel=0.2)
+
+
+def test_an_rmse_that_rises_beside_an_allowance_is_said_to_rise():
+    from types import SimpleNamespace
+
+    # the candidate's residual is mostly a smooth dependence (which the allowance takes
+    # off both sides alike): judged beside it the BIC falls, yet the RMSE the fit
+    # minimises rises, and the verdict says so, not that it "falls by only -x %"
+    rng = np.random.default_rng(4)
+    n = 400
+    u = np.linspace(0.0, 1.0, n)
+    H = np.column_stack([np.sin(np.pi * k * u) for k in (1, 2, 3)])
+    before = 0.1 * rng.standard_normal(n)
+    after = H @ np.array([0.3, -0.2, 0.1]) + 0.001 * rng.standard_normal(n)
+
+    def fit(residual, names):
+        problem = SimpleNamespace(kind="steady", names=names)
+        return SimpleNamespace(n=n, residual=lambda: residual, problem=problem, rmse=0.1)
+
+    data = SimpleNamespace(weights=None, unit=lambda linear: linear)
+    judge = Judge(data, 0.1)
+    reason = judge._evidence(fit(before, ("Fc",)), fit(after, ("Fc", "sigma")), H, 10.0)
+    rise = 100 * (np.sqrt(np.mean(after**2)) / np.sqrt(np.mean(before**2)) - 1)
+    assert reason == (f"the RMSE rises by {rise:.2g} %, from "
+                      f"{np.sqrt(np.mean(before**2)):.4g} to {np.sqrt(np.mean(after**2)):.4g} N")

@@ -180,8 +180,9 @@ class Judge:
             return f"the RMSE rises from {current.rmse:.4g} to {trial.rmse:.4g} {unit}"
         if after > (1 - MIN_RMSE_GAIN) * before:
             weighted = " (rows weighted as in the fit)" if self.weights is not None else ""
-            return (f"the RMSE{weighted} falls by only {100 * (1 - after / before):.2g} %"
-                    f", from {before:.4g} to {after:.4g} {unit}")
+            change = (f"rises by {100 * (after / before - 1):.2g} %" if after > before
+                      else f"falls by only {100 * (1 - after / before):.2g} %")
+            return f"the RMSE{weighted} {change}, from {before:.4g} to {after:.4g} {unit}"
         return None
 
     def compare(self, current: FitResult, trial: FitResult, H=None):
