@@ -221,3 +221,27 @@ def test_a_close_call_between_two_effects_is_reported_as_one():
                  if w["code"] == "indistinguishable" and w["parameter"] == "inertia"]
         assert close and "m_e =" in close[0]["message"]
     assert_honest_uncertainties(report)
+
+
+@pytest.mark.parametrize("has_s", [False, True])
+def test_without_s_a_better_viscous_fit_is_still_the_other_reading(has_s):
+    from types import SimpleNamespace
+
+    from breakaway.identify.indistinguishable import viscous_or_detection
+
+    # viscous fits 15 lower in BIC: its bend with the rate comes from E12 at the s it is
+    # given; without '# s:' that s is arbitrary, and detection is named with the warning
+    problem = SimpleNamespace(s=1.0, F_hat=lambda Fc, Fs: Fs,
+                              data=SimpleNamespace(unit=lambda linear: linear))
+    params = {"Fc": 2.0, "Fs": 3.0}
+    trials = {"viscous": SimpleNamespace(bic=-113.5, problem=problem,
+                                         params={**params, "sigma": 0.5}),
+              "detection": SimpleNamespace(bic=-98.3, problem=problem,
+                                           params={**params, "tau_det": 0.011})}
+    settled = viscous_or_detection(["viscous", "detection"], trials, has_s)
+    if has_s:
+        assert settled is None  # with s the shapes are physical and the BIC decides
+    else:
+        named, other, entry = settled
+        assert (named, other) == ("detection", "viscous")
+        assert entry["code"] == "indistinguishable" and "σ =" in entry["message"]

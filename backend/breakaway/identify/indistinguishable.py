@@ -47,12 +47,15 @@ def like_a_dependence(effect, fit, key, variables) -> dict:
 
 def viscous_or_detection(passing, trials, has_s: bool):
     """On break-away data viscous and detection raise F_ba alike where F̂
-    does not vary. When both pass within MIN_BIC_DROP, returns (named, other, warning):
-    viscous when the file gives ``# s:``, detection when it does not; else None."""
+    does not vary. Returns (named, other, warning) when both are candidates: viscous
+    when the file gives ``# s:`` and the two fit within MIN_BIC_DROP, detection when it
+    gives no s (whatever their BICs: the viscous reading's bend with the rate comes
+    from E12 at an s the file does not give, so its better fit is no evidence); else
+    None."""
     if not {"viscous", "detection"} <= set(passing):
         return None
     v, d = trials["viscous"], trials["detection"]
-    if abs(v.bic - d.bic) >= MIN_BIC_DROP:
+    if has_s and abs(v.bic - d.bic) >= MIN_BIC_DROP:
         return None
     problem = v.problem
     named, other = ("viscous", "detection") if has_s else ("detection", "viscous")
@@ -66,10 +69,11 @@ def viscous_or_detection(passing, trials, has_s: bool):
     else:
         F_hat = problem.F_hat(d.params["Fc"], d.params["Fs"])
         sigma = viscous_equivalent_of_detection(d.params["tau_det"], problem.s, F_hat)
-        text = (f"viscous and detection predict these break-away data alike; named "
-                f"detection because the file gives no '# s:' (σ would scale with an "
-                f"arbitrary s). The other reading is σ = {sigma:.4g} {problem.data.unit('N·s/m')} at s = "
-                f"{problem.s:g}")
+        text = (f"viscous and detection both explain how F_ba rises with the rate (alike "
+                f"where F̂ does not vary); named detection because the file gives no "
+                f"'# s:' (σ, and how the viscous reading bends with the rate, would "
+                f"scale with an arbitrary s). The other reading is "
+                f"σ = {sigma:.4g} {problem.data.unit('N·s/m')} at s = {problem.s:g}")
     return named, other, warning("indistinguishable", other, text)
 
 
