@@ -7,8 +7,9 @@ import math
 import numpy as np
 import pytest
 
-from breakaway.identify.derivatives import (AGREEMENT, NOISE_TO_SIGNAL, WINDOWS, acceleration_noise,
-                                            choose_window, derivatives, local_fit, smooth_fit)
+from breakaway.identify.derivatives import derivatives
+from breakaway.identify.local_fits import (AGREEMENT, NOISE_TO_SIGNAL, WINDOWS, acceleration_noise,
+                                           choose_window, local_fit, smooth_fit)
 
 RATE = 1000.0
 
@@ -75,7 +76,7 @@ def test_uneven_sampling_is_fitted_in_t():
     even_t, even_x, _ = _swing(count)
     v_even, a_even = local_fit(even_t, even_x, 47)
     # the same fit as Savitzky–Golay where the sampling is even
-    from breakaway.identify.derivatives import _local_quadratic
+    from breakaway.identify.local_fits import _local_quadratic
     p_loop, v_loop, a_loop = _local_quadratic(even_t, even_x, 23)
     p_even = smooth_fit(even_t, even_x, 47)[0]
     np.testing.assert_allclose(p_loop[30:-30], p_even[30:-30], rtol=0, atol=1e-12)
@@ -139,7 +140,7 @@ def test_a_steady_acceleration_is_taken_over_long_windows_and_a_jump_over_short_
 
 
 def test_a_reading_of_the_same_samples_is_taken_over_the_recorded_windows():
-    from breakaway.identify.derivatives import acceleration_at
+    from breakaway.identify.local_fits import acceleration_at
 
     step = 5e-6
     t, x, _ = _constant_acceleration(step)

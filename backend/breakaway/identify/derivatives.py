@@ -17,9 +17,10 @@ Every kind and effect that needs v or a takes them from here.
     uneven) over at least the narrowest window in which the error of x (``q/√12`` for
     steps of q, the noise std otherwise, or what a short local fit leaves of x when
     that is larger: :func:`position_error`) contributes at most
-    :data:`NOISE_TO_SIGNAL` of a's RMS (:func:`choose_window`): a narrower one lets the
+    :data:`~.local_fits.NOISE_TO_SIGNAL` of a's RMS (:func:`~.local_fits.choose_window`): a narrower one lets the
     counts through. Each sample's window then widens for as long as the wider fits
-    agree with every narrower one within their errors (:func:`adaptive_windows`):
+    agree with every narrower one within their errors
+    (:func:`~.local_fits.adaptive_windows`):
     where a holds steady (a constant acceleration, a slow swing) the counts' share of
     a falls as the window's length to the power 2.5, and where a changes quickly (a
     jump at a start or a braking) the window stays short.
@@ -32,7 +33,9 @@ from dataclasses import dataclass
 
 import numpy as np
 from numba import njit
-from scipy.signal import oaconvolve, savgol_coeffs, savgol_filter
+
+from .local_fits import (ORDER, WINDOWS, _quadratic_at, acceleration_noise, adaptive_windows,
+                         choose_window, smooth_fit)
 
 #: An adaptive window spans at least this many resolutions of x ...
 WINDOW_RESOLUTIONS = 8
@@ -82,33 +85,6 @@ def _adaptive_velocity(t, x, span, max_half):
 POSITION_RESOLUTIONS = 4
 #: ... and at least this many samples on each side.
 MIN_POSITION_HALF_WINDOW = 2
-
-
-@njit(cache=True)
-def _quadratic_at(t, x, i, lo, hi):
-    """Coefficients (c0, c1, c2) of the least-squares x ≈ c0 + c1·u + c2·u², u = t − t_i,
-    over samples lo … hi − 1 (Cramer's rule on the 3 × 3 normal equations); x_i and
-    zeros when they are singular."""
-    s0 = s1 = s2 = s3 = s4 = 0.0
-    b0 = b1 = b2 = 0.0
-    for j in range(lo, hi):
-        u = t[j] - t[i]
-        u2 = u * u
-        s0 += 1.0
-        s1 += u
-        s2 += u2
-        s3 += u2 * u
-        s4 += u2 * u2
-        b0 += x[j]
-        b1 += u * x[j]
-        b2 += u2 * x[j]
-    det = s0 * (s2 * s4 - s3 * s3) - s1 * (s1 * s4 - s3 * s2) + s2 * (s1 * s3 - s2 * s2)
-    if det == 0.0:
-        return x[i], 0.0, 0.0
-    c0 = (b0 * (s2 * s4 - s3 * s3) - s1 * (b1 * s4 - s3 * b2) + s2 * (b1 * s3 - s2 * b2)) / det
-    c1 = (s0 * (b1 * s4 - s3 * b2) - b0 * (s1 * s4 - s3 * s2) + s2 * (s1 * b2 - b1 * s2)) / det
-    c2 = (s0 * (s2 * b2 - b1 * s3) - s1 * (s1 * b2 - b1 * s2) + b0 * (s1 * s3 - s2 * s2)) / det
-    return c0, c1, c2
 
 
 @njit(cache=True)
@@ -172,18 +148,6 @@ def velocity_and_span(t, x, resolution: float = 0.0):
     return _adaptive_velocity(t, x, WINDOW_RESOLUTIONS * resolution, MAX_HALF_WINDOW)
 
 
-#: Degree of the local polynomial: a quadratic gives the slope and the curvature.
-ORDER = 2
-#: The resolution of x may contribute at most this share of a's RMS: an inertia m_e
-#: fitted on such an a is biased low by about the share squared (1 %).
-NOISE_TO_SIGNAL = 0.1
-#: Windows tried [samples], odd, about √2 apart.
-WINDOWS = (5, 7, 9, 13, 17, 25, 33, 47, 65, 93, 129, 181, 257, 363, 513)
-#: Sampling is uniform when every step is within this share of the median step.
-UNIFORM_TOLERANCE = 1e-3
-#: Rows the window is chosen on (a long record is judged on evenly spread samples).
-CHOICE_ROWS = 200_000
-
 
 @dataclass(frozen=True)
 class Derivatives:
@@ -219,177 +183,6 @@ class Derivatives:
                          f"{WINDOW_RESOLUTIONS} resolutions")
         return {"method": self.method, "window": int(self.window), "order": int(self.order),
                 "velocity": velocity_text}
-
-
-def _uniform_step(t) -> float | None:
-    """The sampling interval when ``t`` is uniformly sampled, else None."""
-    steps = np.diff(t)
-    dt = float(np.median(steps))
-    if dt > 0 and float(np.max(np.abs(steps - dt))) <= UNIFORM_TOLERANCE * dt:
-        return dt
-    return None
-
-
-@njit(cache=True)
-def _local_quadratic(t, x, half):
-    """Value, slope and curvature of a least-squares quadratic in t over each sample's
-    window of ``2·half + 1`` samples (shifted inwards at the ends), for uneven sampling."""
-    n = x.size
-    p = np.empty(n)
-    v = np.empty(n)
-    a = np.empty(n)
-    for i in range(n):
-        lo = min(max(i - half, 0), max(n - 2 * half - 1, 0))
-        hi = min(lo + 2 * half + 1, n)
-        p[i], v[i], c2 = _quadratic_at(t, x, i, lo, hi)
-        a[i] = 2.0 * c2
-    return p, v, a
-
-
-def local_fit(t, x, window: int, order: int = ORDER):
-    """v and a of ``x(t)`` from a local polynomial of ``order`` over ``window`` samples.
-
-    Parameters
-    ----------
-    t, x : array_like
-        Times [s] (increasing) and positions [m].
-    window : int
-        Odd number of samples of each fit.
-    order : int
-        Degree of the polynomial (2 where the sampling is uneven).
-
-    Returns
-    -------
-    v, a : numpy.ndarray
-        [m/s], [m/s²].
-    """
-    t = np.ascontiguousarray(t, dtype=float)
-    x = np.ascontiguousarray(x, dtype=float)
-    return smooth_fit(t, x, window, order)[1:]
-
-
-def smooth_fit(t, x, window: int, order: int = ORDER):
-    """Position, velocity and acceleration of ``x(t)`` from a local polynomial of
-    ``order`` over ``window`` samples ([m], [m/s], [m/s²])."""
-    t = np.ascontiguousarray(t, dtype=float)
-    x = np.ascontiguousarray(x, dtype=float)
-    window = min(window, x.size if x.size % 2 else x.size - 1)
-    dt = _uniform_step(t)
-    if dt is None:
-        return _local_quadratic(t, x, window // 2)
-    return tuple(savgol_filter(x, window, order, deriv=k, delta=dt, mode="interp")
-                 for k in (0, 1, 2))
-
-
-#: Windows of more samples than this are convolved by FFT (overlap-add): a direct
-#: convolution costs the window's length per sample.
-FFT_WINDOW = 64
-
-
-def curvature_fit(t, x, window: int) -> np.ndarray:
-    """a [m/s²] of ``x(t)`` alone from a local quadratic over ``window`` samples (what
-    :func:`local_fit` gives, without its velocity): on even sampling a Savitzky–Golay
-    filter, the long windows by FFT, the ends by the quadratic of the first and last
-    window as ``savgol_filter``'s ``mode="interp"`` does."""
-    t = np.ascontiguousarray(t, dtype=float)
-    x = np.ascontiguousarray(x, dtype=float)
-    window = min(window, x.size if x.size % 2 else x.size - 1)
-    dt = _uniform_step(t)
-    if dt is None:
-        return _local_quadratic(t, x, window // 2)[2]
-    if window <= FFT_WINDOW or x.size < 4 * window:
-        return savgol_filter(x, window, ORDER, deriv=2, delta=dt, mode="interp")
-    half = window // 2
-    coeffs = savgol_coeffs(window, ORDER, deriv=2, delta=dt, use="dot")
-    a = np.empty(x.size)
-    a[half:-half] = oaconvolve(x, coeffs[::-1], mode="valid")
-    a[:half] = savgol_filter(x[:window], window, ORDER, deriv=2, delta=dt, mode="interp")[:half]
-    a[-half:] = savgol_filter(x[-window:], window, ORDER, deriv=2, delta=dt,
-                              mode="interp")[-half:]
-    return a
-
-
-def acceleration_noise(window: int, resolution: float, dt: float, order: int = ORDER) -> float:
-    """Std of a [m/s²] that a white error of ``resolution`` in x causes in a local fit
-    of ``window`` samples at interval ``dt``."""
-    coeffs = savgol_coeffs(window, order, deriv=2, delta=dt, use="dot")
-    return resolution * float(np.sqrt(np.dot(coeffs, coeffs)))
-
-
-def choose_window(t, x, resolution: float, order: int = ORDER) -> int:
-    """The narrowest window of :data:`WINDOWS` in which the resolution of x [m]
-    contributes at most :data:`NOISE_TO_SIGNAL` of a's RMS (the widest that fits the
-    record when none does)."""
-    t = np.asanyarray(t, dtype=float)
-    x = np.asanyarray(x, dtype=float)
-    stride = max(1, x.size // CHOICE_ROWS)
-    dt = float(np.median(np.diff(t)))
-    fitting = [w for w in WINDOWS if w <= max(x.size // 4, WINDOWS[0])]
-    for window in fitting:
-        _, a = local_fit(t, x, window, order)
-        noise = acceleration_noise(window, resolution, dt, order)
-        signal = math.sqrt(max(float(np.mean(a[::stride] ** 2)) - noise**2, 0.0))
-        if noise <= NOISE_TO_SIGNAL * signal:
-            return window
-    return fitting[-1]
-
-
-#: A wider window's a must lie within this many of its standard errors (what the error
-#: of x makes of it) of every narrower window's: the intersection of confidence
-#: intervals rule of adaptive smoothing (Goldenshluger & Nemirovski 1997; Katkovnik
-#: 1999). Three standard errors, as elsewhere in this engine: a window is widened over a
-#: real change of a only where that change is within the noise of the narrower fits.
-AGREEMENT = 3.0
-
-
-def adaptive_windows(t, x, error: float, narrowest: int) -> tuple[np.ndarray, np.ndarray]:
-    """Each sample's acceleration [m/s²] and window [samples]: the widest window of
-    :data:`WINDOWS`, from ``narrowest`` up, whose local fit's a lies within
-    :data:`AGREEMENT` standard errors of every narrower one's (the intervals
-    a ± AGREEMENT·std of all windows so far still intersect); the std is what a white
-    error of ``error`` [m] in x makes of a (:func:`acceleration_noise`).
-
-    A steady a is thus taken over a long window, where x's resolution hardly shows,
-    and a quick change over a short one, which keeps it. Once the intervals part, the
-    sample keeps the last window at which they met. (Windows that end or start at the
-    sample, which keep widening beside a jump of a, were tried: they mended one more
-    heavy carriage and put a ramp's corner, a jump of a the centred window spreads,
-    into an inertia and a lag on two joints.)"""
-    t = np.asanyarray(t, dtype=float)
-    x = np.asanyarray(x, dtype=float)
-    dt = float(np.median(np.diff(t)))
-    tried = [w for w in WINDOWS if narrowest <= w <= max(x.size // 4, narrowest)] or [narrowest]
-    low = np.full(x.size, -np.inf)
-    high = np.full(x.size, np.inf)
-    agreeing = np.ones(x.size, dtype=bool)
-    a = windows = None
-    for window in tried:
-        a_w = curvature_fit(t, x, window)
-        spread = AGREEMENT * acceleration_noise(window, error, dt)
-        np.maximum(low, a_w - spread, out=low)
-        np.minimum(high, a_w + spread, out=high)
-        agreeing &= low <= high
-        if a is None:
-            a, windows = a_w, np.full(x.size, window)
-        else:
-            a[agreeing] = a_w[agreeing]
-            windows[agreeing] = window
-        if not agreeing.any():
-            break
-    return a, windows
-
-
-def acceleration_at(t, x, windows) -> np.ndarray:
-    """a [m/s²] of ``x(t)``, each sample's from the local fit over its own window of
-    ``windows`` [samples] (those :func:`adaptive_windows` chose for another reading of
-    the same samples)."""
-    t = np.asanyarray(t, dtype=float)
-    x = np.asanyarray(x, dtype=float)
-    a = np.empty(x.size)
-    for window in np.unique(windows):
-        rows = windows == window
-        a[rows] = curvature_fit(t, x, int(window))[rows]
-    return a
 
 
 #: An acceleration is resolved when its RMS is at least this many times the part the
@@ -481,6 +274,6 @@ def _span(v, spans) -> float:
     return float(np.median(spans[moving & (speed <= np.median(speed[moving]))]))
 
 
-__all__ = ["position_error", "POSITION_RESOLUTIONS", "positions", "velocity_and_span", "smooth_fit", "block_velocity", "MAX_HALF_WINDOW", "WINDOW_RESOLUTIONS", "velocity", "Derivatives", "NOISE_TO_SIGNAL", "ORDER", "WINDOWS", "acceleration_noise",
-           "choose_window", "derivatives", "local_fit", "adaptive_windows", "acceleration_at", "curvature_fit",
-           "AGREEMENT"]
+__all__ = ["Derivatives", "MAX_HALF_WINDOW", "POSITION_RESOLUTIONS", "WINDOW_RESOLUTIONS",
+           "block_velocity", "derivatives", "position_error", "positions", "velocity",
+           "velocity_and_span"]

@@ -30,7 +30,7 @@ from math import comb
 
 import numpy as np
 
-from .derivatives import smooth_fit
+from .local_fits import smooth_fit
 from .kinematics import printed_unit, quantum
 
 _MAD_TO_STD = 1.4826

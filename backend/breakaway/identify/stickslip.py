@@ -26,7 +26,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .derivatives import local_fit
+from .local_fits import local_fit
 
 #: Samples of the velocity's local fit (short: a slip lasts a few tens of samples).
 WINDOW = 9

@@ -10,8 +10,8 @@ from scipy.ndimage import uniform_filter1d
 
 from ...presliding import _presliding_kernel
 from ...steady import stribeck_kernel
-from ..derivatives import (WINDOWS, acceleration_at, block_velocity, derivatives, positions,
-                           smooth_fit)
+from ..derivatives import block_velocity, derivatives, positions
+from ..local_fits import WINDOWS, acceleration_at, smooth_fit
 from ..effects import engaged_presliding
 from ..kinematics import REVERSAL_STEPS, direction, position_noise, quantum
 from ..stickslip import find_stick_slip
