@@ -152,3 +152,14 @@ def test_a_reading_of_the_same_samples_is_taken_over_the_recorded_windows():
     rows = d.windows == d.windows.max()
     widest = local_fit(t, shifted, int(d.windows.max()))[1]
     np.testing.assert_allclose(again[rows], widest[rows], rtol=0, atol=1e-9)
+
+
+@pytest.mark.parametrize("window", [9, 65, 93, 513])
+def test_the_curvature_alone_is_the_local_fits_a_ends_included(window):
+    from breakaway.identify.local_fits import curvature_fit
+
+    count = 2 * np.pi / 4096
+    t, x, _ = _swing(count, n=4000)
+    # windows over 64 samples go by FFT, their ends by the first and last window's fit
+    np.testing.assert_allclose(curvature_fit(t, x, window), local_fit(t, x, window)[1],
+                               rtol=0, atol=1e-9 * float(np.max(np.abs(local_fit(t, x, 9)[1]))))
