@@ -252,17 +252,11 @@ def derivatives(t, x, quantum: float = 0.0, noise: float = 0.0, blocks=None,
     a, windows = np.empty(x.size), np.full(x.size, 3)
     for i, j in blocks:
         if j - i >= WINDOWS[0]:
-            a[i:j], windows[i:j] = adaptive_windows(t[i:j], x[i:j], error,
-                                                    min(window, _odd_at_most(j - i)))
+            a[i:j], windows[i:j] = adaptive_windows(t[i:j], x[i:j], error, window)
         else:
             a[i:j] = np.gradient(v[i:j], t[i:j])
     noise_a = acceleration_noise(window, error, float(np.median(np.diff(t[first:last]))))
     return Derivatives(v, a, "savgol", window, ORDER, _span(v, spans), noise_a, windows)
-
-
-def _odd_at_most(n: int) -> int:
-    """The largest odd number not above ``n``."""
-    return n if n % 2 else n - 1
 
 
 def _span(v, spans) -> float:

@@ -151,7 +151,7 @@ def acceleration_noise(window: int, resolution: float, dt: float, order: int = O
     return resolution * float(np.sqrt(np.dot(coeffs, coeffs)))
 
 
-def choose_window(t, x, resolution: float, order: int = ORDER) -> int:
+def choose_window(t, x, resolution: float) -> int:
     """The narrowest window of :data:`WINDOWS` in which the resolution of x [m]
     contributes at most :data:`NOISE_TO_SIGNAL` of a's RMS (the widest that fits the
     record when none does)."""
@@ -161,8 +161,8 @@ def choose_window(t, x, resolution: float, order: int = ORDER) -> int:
     dt = float(np.median(np.diff(t)))
     fitting = [w for w in WINDOWS if w <= max(x.size // 4, WINDOWS[0])]
     for window in fitting:
-        _, a = local_fit(t, x, window, order)
-        noise = acceleration_noise(window, resolution, dt, order)
+        a = curvature_fit(t, x, window)
+        noise = acceleration_noise(window, resolution, dt)
         signal = math.sqrt(max(float(np.mean(a[::stride] ** 2)) - noise**2, 0.0))
         if noise <= NOISE_TO_SIGNAL * signal:
             return window
@@ -186,7 +186,8 @@ def adaptive_windows(t, x, error: float, narrowest: int) -> tuple[np.ndarray, np
 
     A steady a is thus taken over a long window, where x's resolution hardly shows,
     and a quick change over a short one, which keeps it. Once the intervals part, the
-    sample keeps the last window at which they met. (Windows that end or start at the
+    sample keeps the last window at which they met; a window longer than the record is
+    its whole length, as in :func:`curvature_fit`. (Windows that end or start at the
     sample, which keep widening beside a jump of a, were tried: they mended one more
     heavy carriage and put a ramp's corner, a jump of a the centred window spreads,
     into an inertia and a lag on two joints.)"""
