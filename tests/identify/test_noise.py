@@ -185,3 +185,27 @@ def test_a_flat_record_read_by_a_coarse_encoder_is_not_unexplained():
     ratio = misfit_ratio(diagnosis.final, diagnosis.noise, diagnosis.input_floor, errors)
     assert 0.8 < ratio < 1.3
     assert report(diagnosis)["unexplained"] is False
+
+
+def test_a_controllers_output_is_read_as_computed_from_x_by_the_normal_equations():
+    # computed_from_x solves the 16-column regression by its normal equations (an SVD
+    # of the tall matrix took a second on a million rows): its R² is the tall
+    # least-squares fit's, for a PD output of the encoder's counts and for a sensor
+    from breakaway.identify.local_fits import smooth_fit
+    from breakaway.identify.noise import CONTROLLER_LAGS, FAST_WINDOW, computed_from_x
+
+    rng = np.random.default_rng(3)
+    t = np.arange(20_000) * 1e-3
+    count = 2 * np.pi / 4096
+    x = np.round(0.3 * np.sin(2 * np.pi * 0.4 * t) / count) * count
+    pd_output = 40.0 * (0.1 * np.sin(t) - x) - 0.8 * np.gradient(x, t)
+    sensor = np.sign(np.cos(2 * np.pi * 0.4 * t)) + 0.01 * rng.standard_normal(t.size)
+    for F, computed in ((pd_output, True), (sensor, False)):
+        lags = CONTROLLER_LAGS
+        x_fast = x - smooth_fit(t, x, FAST_WINDOW)[0]
+        F_fast = (F - smooth_fit(t, F, FAST_WINDOW)[0])[lags:]
+        tall = np.column_stack([x_fast[lags - k:x.size - k] for k in range(lags)])
+        coef, *_ = np.linalg.lstsq(tall, F_fast, rcond=None)
+        r2 = 1.0 - np.var(F_fast - tall @ coef) / np.var(F_fast)
+        assert computed_from_x(t, x, F) == pytest.approx(r2, abs=1e-9)
+        assert (r2 >= 0.9) == computed

@@ -32,6 +32,22 @@ def test_running_median_of_the_neighbours_leaves_the_row_out():
     assert running_median(values, 1, neighbours_only=True).tolist() == [2.0, 50.5, 2.5, 52.0, 3.0]
 
 
+def test_running_median_skips_set_aside_rows_as_nanmedian_does():
+    # the fast path takes numpy's plain median wherever a window holds no NaN
+    rng = np.random.default_rng(4)
+    values = rng.standard_normal(2000)
+    values[rng.choice(values.size, 150, replace=False)] = np.nan
+    values[500:508] = np.nan  # a window of nothing but set-aside rows
+    padded = np.pad(values, 3, constant_values=np.nan)
+    windows = np.delete(np.lib.stride_tricks.sliding_window_view(padded, 7), 3, axis=1)
+    with np.errstate(invalid="ignore"), pytest.warns(RuntimeWarning, match="All-NaN"):
+        expected = np.nanmedian(windows, axis=1)
+    with pytest.warns(RuntimeWarning, match="All-NaN"):
+        got = running_median(values, 3, neighbours_only=True)
+    assert np.isnan(got[503])
+    np.testing.assert_array_equal(got, expected)
+
+
 def test_white_noise_has_no_spikes():
     rng = np.random.default_rng(0)
     residual = rng.standard_normal(200_000)

@@ -301,11 +301,15 @@ def computed_from_x(t, x, F) -> float:
         return 0.0
     x_fast = x - smooth_fit(t, x, FAST_WINDOW)[0]
     F_fast = (F - smooth_fit(t, F, FAST_WINDOW)[0])[CONTROLLER_LAGS:]
-    lagged = np.column_stack([x_fast[CONTROLLER_LAGS - k:n - k] for k in range(CONTROLLER_LAGS)])
+    # column k is x_fast delayed by k samples (a view, not a copy)
+    lagged = np.lib.stride_tricks.sliding_window_view(x_fast[1:], CONTROLLER_LAGS)[:, ::-1]
     spread = float(np.var(F_fast))
     if not spread > 0:
         return 0.0
-    coef, *_ = np.linalg.lstsq(lagged, F_fast, rcond=None)
+    # the normal equations: 16 columns against a million rows, where an SVD of the tall
+    # matrix took a second; lstsq on the small system keeps a rank-deficient one (exact
+    # x has no fast part) solvable
+    coef, *_ = np.linalg.lstsq(lagged.T @ lagged, lagged.T @ F_fast, rcond=None)
     return float(1.0 - np.var(F_fast - lagged @ coef) / spread)
 
 

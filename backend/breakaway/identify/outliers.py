@@ -65,7 +65,19 @@ def running_median(values, half_window: int = HALF_WINDOW, neighbours_only: bool
     windows = np.lib.stride_tricks.sliding_window_view(padded, 2 * half_window + 1)
     if neighbours_only:
         windows = np.delete(windows, half_window, axis=1)
-    return np.nanmedian(windows, axis=1)
+    return _row_medians(windows)
+
+
+def _row_medians(windows) -> np.ndarray:
+    """Median of each row of ``windows``, NaN not counted. ``numpy.nanmedian`` takes a
+    masked path for every row of a few values (3.9 s of a million-row diagnosis); only
+    the rows that hold a NaN (a record's ends, a set-aside spike), whose plain median
+    is NaN, need it."""
+    medians = np.median(windows, axis=1)
+    gaps = np.isnan(medians)
+    if gaps.any():
+        medians[gaps] = np.nanmedian(windows[gaps], axis=1)
+    return medians
 
 
 def _stands_out(values, unit, sigmas: float):
@@ -79,8 +91,8 @@ def _stands_out(values, unit, sigmas: float):
     windows = np.lib.stride_tricks.sliding_window_view(padded, h)
     before = np.full(n, np.nan)
     after = np.full(n, np.nan)
-    before[1:] = np.nanmedian(windows[1:n], axis=1)  # values[i−h : i]
-    after[:-1] = np.nanmedian(windows[h + 1:n + h], axis=1)  # values[i+1 : i+1+h]
+    before[1:] = _row_medians(windows[1:n])  # values[i−h : i]
+    after[:-1] = _row_medians(windows[h + 1:n + h])  # values[i+1 : i+1+h]
     z_before = (values - before) / unit
     z_after = (values - after) / unit
     with np.errstate(invalid="ignore"):  # NaN at the two ends compares False
