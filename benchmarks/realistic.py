@@ -53,6 +53,9 @@ from identify.rigzoo import families as zoo_families  # noqa: E402
 #: Seeds never used while developing the engine or the zoo (the tests use 0–9).
 SEEDS = tuple(range(1000, 1010))
 
+#: Seeds to develop on: neither the tests' nor the unseen ones.
+DEVELOPMENT_SEEDS = tuple(range(2000, 2010))
+
 #: Kinds of miss: a phrase of :func:`failures`' message and its kind (first match wins).
 MISS_KINDS = (
     ("named but not in the data", "named, not there"),
@@ -141,6 +144,10 @@ def main() -> int:
                         help="only these families (shell patterns, e.g. 'hand-*')")
     parser.add_argument("--seeds", type=int, default=len(SEEDS),
                         help=f"the first N of the seeds {SEEDS[0]}–{SEEDS[-1]}")
+    parser.add_argument("--skip", type=int, default=0, help="skip the first N of those seeds")
+    parser.add_argument("--development", action="store_true",
+                        help="the development seeds 2000– instead (printed, not written to "
+                             "the documentation's results)")
     parser.add_argument("--machines", action="store_true",
                         help="also the machine-like families of issue 19")
     parser.add_argument("--save", metavar="DIR", help="write each report and CSV to DIR")
@@ -155,7 +162,7 @@ def main() -> int:
     if args.save:
         os.makedirs(args.save, exist_ok=True)
     out = Results("realistic", __file__)
-    seeds = SEEDS[:args.seeds]
+    seeds = (DEVELOPMENT_SEEDS if args.development else SEEDS)[args.skip:args.seeds]
     jobs = [(name, seed, args.save) for name in chosen for seed in seeds]
     print(f"{len(chosen)} families × seeds {seeds[0]}–{seeds[-1]} = {len(jobs)} fits, "
           f"-j {args.j}; load average before: "
@@ -218,7 +225,8 @@ def main() -> int:
                   f"{', '.join(r['effects']) or 'none'}):")
             for message in r["failures"]:
                 print(f"    {message}")
-    out.write()
+    if not args.development:
+        out.write()
     return 0
 
 
