@@ -139,6 +139,28 @@ def test_a_steady_acceleration_is_taken_over_long_windows_and_a_jump_over_short_
     assert np.all(d.windows >= d.window)
 
 
+def test_where_a_jumps_its_error_is_bounded_and_elsewhere_it_is_none():
+    step = 5e-6
+    t, x, a_true = _constant_acceleration(step)
+    d = derivatives(t, x, quantum=step)
+    jumps = np.flatnonzero(np.diff(a_true))
+    error = np.abs(d.a - a_true)
+    # the bound covers a's actual error wherever the error exceeds a's noise
+    spread = AGREEMENT * d.acceleration_noise
+    assert np.all(error[error > spread] <= d.bias[error > spread] + spread)
+    for j in jumps:
+        # the jump, less the allowance for a's noise across it
+        size = abs(a_true[j + 1] - a_true[j])
+        assert size - 1.1 * math.sqrt(2) * spread <= d.bias[j] <= size
+    # where a holds steady there is no bias to bound
+    near = np.zeros(t.size, dtype=bool)
+    for j in jumps:
+        near[max(j - 2 * d.window, 0):j + 2 * d.window] = True
+    assert np.all(d.bias[~near] == 0.0)
+    # on exact x, numpy's differences: no local fit, no bias of one
+    assert derivatives(t, x).bias is None
+
+
 def test_a_reading_of_the_same_samples_is_taken_over_the_recorded_windows():
     from breakaway.identify.local_fits import acceleration_at
 

@@ -34,8 +34,8 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
-from .local_fits import (ORDER, WINDOWS, _quadratic_at, acceleration_noise, adaptive_windows,
-                         choose_window, smooth_fit)
+from .local_fits import (ORDER, WINDOWS, _quadratic_at, acceleration_bias, acceleration_noise,
+                         adaptive_windows, choose_window, smooth_fit)
 
 #: An adaptive window spans at least this many resolutions of x ...
 WINDOW_RESOLUTIONS = 8
@@ -167,6 +167,9 @@ class Derivatives:
     #: each sample's window of a's local fit [samples] (:func:`adaptive_windows`), at
     #: least :attr:`window`; None where a is not taken by local fits
     windows: np.ndarray | None = None
+    #: each sample's bound on how far a may lie from the truth where a jumps [m/s²]
+    #: (:func:`~.local_fits.acceleration_bias`); None where a is not taken by local fits
+    bias: np.ndarray | None = None
 
     @property
     def acceleration_resolved(self) -> bool:
@@ -249,14 +252,15 @@ def derivatives(t, x, quantum: float = 0.0, noise: float = 0.0, blocks=None,
     spans = np.concatenate([part[1] for part in parts])
     first, last = max(blocks, key=lambda block: block[1] - block[0])
     error = position_error(t[first:last], x[first:last], quantum, noise)
-    a, windows = np.empty(x.size), np.full(x.size, 3)
+    a, windows, bias = np.empty(x.size), np.full(x.size, 3), np.zeros(x.size)
     for i, j in blocks:
         if j - i >= WINDOWS[0]:
             a[i:j], windows[i:j] = adaptive_windows(t[i:j], x[i:j], error, window)
+            bias[i:j] = acceleration_bias(t[i:j], x[i:j], error, window)
         else:
             a[i:j] = np.gradient(v[i:j], t[i:j])
     noise_a = acceleration_noise(window, error, float(np.median(np.diff(t[first:last]))))
-    return Derivatives(v, a, "savgol", window, ORDER, _span(v, spans), noise_a, windows)
+    return Derivatives(v, a, "savgol", window, ORDER, _span(v, spans), noise_a, windows, bias)
 
 
 def _span(v, spans) -> float:

@@ -144,21 +144,23 @@ def _diagnose(data: Dataset, progress, set_aside: SetAside | None = None,
 
     # what x's resolution sets through the base model, row by row: every fit from here
     # on weighs each row by the inverse of its error's variance
-    weights = input_weights(screen_base.problem.resolution_errors(screen_base.params),
-                            noise.value) \
+    errors = screen_base.problem.resolution_errors(screen_base.params) \
         if data.kind == "timeseries" else None
+    weights = input_weights(errors, noise.value) if errors is not None else None
     if weights is not None:
         screen_base = refit(with_weights(screen, weights), screen_base)
         if screened:
-            data = with_weights(data, input_weights(
-                full_problem.resolution_errors(base.params), noise.value))
+            full_errors = full_problem.resolution_errors(base.params)
+            data = with_weights(data, input_weights(full_errors, noise.value))
             # the weighted base on every row: the screened solution, evaluated (a
             # polish on every row moves it little and costs a Jacobian per step)
             base = _evaluate(data, screen_base)
         else:
             data, base = screen_base.problem.data, screen_base
         screen = screen_base.problem.data
-    search = Selection(screen, noise.value, report)
+    # under a commanded force x's reading sets every row's error, and the rows where a
+    # jumps are not weighed apart (:meth:`.selection.Selection._reweigh`)
+    search = Selection(screen, noise.value, report, None if noise.command else errors)
     available = []
     for effect, why in availability(screen_base.problem).items():
         if why is None:
@@ -202,6 +204,10 @@ def _diagnose(data: Dataset, progress, set_aside: SetAside | None = None,
     # put it back), in the model's order
     last = {s.effect: s for s in search.steps}
     steps = [last[e] for e in current.effects if e in last]
+    if screened and search.reweighed:
+        # every row weighed as the search's rows were, where a jumps
+        jumps = problem_for(data, current.effects).acceleration_errors(current.params)
+        data = with_weights(data, input_weights(np.hypot(full_errors, jumps), noise.value))
     if screened:
         report(0.92, "refitting the chosen model on every row")
         final = refit(data, current, max_nfev=FULL_REFIT_EVALUATIONS) \

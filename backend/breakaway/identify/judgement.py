@@ -79,8 +79,19 @@ class Judge:
         self.base_weights = data.weights
         self.weights = data.weights
         self._weights: dict = {}
+        #: whether a model that reads a weighs its rows with a's error where it jumps
+        self.jumps = False
         self._blocks = None
         self._heldout: dict = {}
+
+    def reweigh(self, data) -> None:
+        """Judge from here on with ``data``'s weights as the base, and a model that
+        reads a with the error of a where it jumps in its rows' errors (the rows weighed
+        as :meth:`~.selection.Selection._reweigh` weighs them)."""
+        self.data = data
+        self.base_weights = self.weights = data.weights
+        self.jumps = True
+        self._weights.clear()
 
     def blocks(self, fit: FitResult):
         if self._blocks is None:
@@ -219,6 +230,9 @@ class Judge:
             return self.base_weights
         if id(current) not in self._weights:
             errors = current.problem.resolution_errors(current.params)
+            jumps = current.problem.acceleration_errors(current.params) if self.jumps else None
+            if jumps is not None:
+                errors = np.hypot(errors, jumps)
             self._weights[id(current)] = (current, input_weights(errors, self.noise))
         return self._weights[id(current)][1]
 

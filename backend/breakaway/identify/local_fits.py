@@ -14,6 +14,7 @@ import math
 
 import numpy as np
 from numba import njit
+from scipy.ndimage import maximum_filter1d
 from scipy.signal import oaconvolve, savgol_coeffs, savgol_filter
 
 #: Degree of the local polynomial: a quadratic gives the slope and the curvature.
@@ -215,6 +216,40 @@ def adaptive_windows(t, x, error: float, narrowest: int) -> tuple[np.ndarray, np
     return a, windows
 
 
+def acceleration_bias(t, x, error: float, narrowest: int) -> np.ndarray:
+    """How far each sample's a [m/s²] may lie from the truth where a jumps (a heavy
+    body's start, its braking): the change of a across the narrowest window (from the
+    fit that ends half a window before the sample to the one that starts half a window
+    after it) in excess of the changes over the windows beside it and of
+    :data:`AGREEMENT` times what x's error makes of such a difference, and the largest
+    of it within half a window either side.
+
+    A centred quadratic spreads a jump of a over its window, and no window narrower
+    than the noise allows reads it: the rows within a window of the jump carry an error
+    of up to the jump (tens of newtons times a carriage's mass, on a load cell of half
+    a newton). A smooth change is read without such a bias (a centred quadratic's
+    curvature follows a linear change of a exactly), and it changes a beside the
+    window as much as across it: only a change that its neighbours do not share is a
+    jump. Where a holds steady or changes smoothly the bias is 0."""
+    t = np.asanyarray(t, dtype=float)
+    x = np.asanyarray(x, dtype=float)
+    half = narrowest // 2
+    if x.size < narrowest + 6 * half:
+        return np.zeros(x.size)
+    a = curvature_fit(t, x, narrowest)
+    rows = np.arange(x.size)
+
+    def at(shift):
+        return a[np.clip(rows + shift, 0, x.size - 1)]
+
+    across = np.abs(at(half) - at(-half))
+    beside = np.maximum(np.abs(at(-half) - at(-3 * half)), np.abs(at(3 * half) - at(half)))
+    dt = float(np.median(np.diff(t)))
+    noise = math.sqrt(2.0) * acceleration_noise(narrowest, error, dt)
+    excess = np.maximum(across - beside - AGREEMENT * noise, 0.0)
+    return maximum_filter1d(excess, 2 * half + 1, mode="nearest")
+
+
 def acceleration_at(t, x, windows) -> np.ndarray:
     """a [m/s²] of ``x(t)``, each sample's from the local fit over its own window of
     ``windows`` [samples] (those :func:`adaptive_windows` chose for another reading of
@@ -229,5 +264,6 @@ def acceleration_at(t, x, windows) -> np.ndarray:
 
 
 __all__ = ["AGREEMENT", "CHOICE_ROWS", "FFT_WINDOW", "NOISE_TO_SIGNAL", "ORDER",
-           "UNIFORM_TOLERANCE", "WINDOWS", "acceleration_at", "acceleration_noise",
+           "UNIFORM_TOLERANCE", "WINDOWS", "acceleration_at", "acceleration_bias",
+           "acceleration_noise",
            "adaptive_windows", "choose_window", "curvature_fit", "local_fit", "smooth_fit"]

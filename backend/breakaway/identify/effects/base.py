@@ -182,6 +182,12 @@ class Effect:
     def sensor(self, pb, p, F, ctx):
         return F
 
+    def acceleration_gain(self, pb, p) -> float:
+        """How much the predicted force moves per unit of a [N per m/s²] (an effect
+        that reads the acceleration: a's error where it jumps reaches the force
+        through it)."""
+        return 0.0
+
 
 def _needs_both_directions(pb) -> str | None:
     counts = pb.direction_counts()

@@ -39,6 +39,9 @@ class Inertia(Effect):
         a = ctx["a"] if "a" in ctx else self._acceleration(pb, ctx.get("F_hat"))
         return F + p["m_e"] * a
 
+    def acceleration_gain(self, pb, p) -> float:
+        return p["m_e"]
+
     def starts(self, pb, current, r):
         F_hat = current["Fc"] + (current["Fs"] - current["Fc"]) / 2
         return [{"m_e": max(_project(r, self._acceleration(pb, F_hat)), 0.0)}]

@@ -281,6 +281,18 @@ class TimeseriesProblem(Problem):
                     for window in {SHORT_SMOOTHING, self.derivatives.window}),
                    key=lambda rows: float(np.mean(np.square(rows))))
 
+    def acceleration_errors(self, params) -> np.ndarray | None:
+        """Each row's force error [N] where a jumps, which no reading at the record's
+        own windows shows (:meth:`resolution_errors` leaves it out): the local fit
+        spreads the jump over its window
+        (:attr:`..derivatives.Derivatives.bias`), and an effect that reads a (an
+        inertia's m_e) carries it into the force. None where no effect reads a or a is
+        not taken by local fits."""
+        gain = sum(effect.acceleration_gain(self, params) for effect in self.effect_objects)
+        if not gain or self.derivatives.bias is None:
+            return None
+        return gain * self.derivatives.bias
+
     def _reading_errors(self, params, window: int, seed: int) -> np.ndarray:
         rng = np.random.default_rng(seed)
         smooth = np.concatenate([
