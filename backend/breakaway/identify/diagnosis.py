@@ -147,6 +147,7 @@ def _diagnose(data: Dataset, progress, set_aside: SetAside | None = None,
     errors = screen_base.problem.resolution_errors(screen_base.params) \
         if data.kind == "timeseries" else None
     weights = input_weights(errors, noise.value) if errors is not None else None
+    full_errors = None
     if weights is not None:
         screen_base = refit(with_weights(screen, weights), screen_base)
         if screened:
@@ -206,6 +207,8 @@ def _diagnose(data: Dataset, progress, set_aside: SetAside | None = None,
     steps = [last[e] for e in current.effects if e in last]
     if screened and search.reweighed:
         # every row weighed as the search's rows were, where a jumps
+        if full_errors is None:  # the base weighed no row apart
+            full_errors = full_problem.resolution_errors(base.params)
         jumps = problem_for(data, current.effects).acceleration_errors(current.params)
         data = with_weights(data, input_weights(np.hypot(full_errors, jumps), noise.value))
     if screened:
