@@ -212,8 +212,15 @@ def test_uploads_are_read_in_a_reader_process_replaced_when_it_dies(tmp_path, ca
         [second] = spawned(os.getpid()) - before
 
         async def killed_midway():
+            idle = cpu_seconds([second])
             reading = asyncio.ensure_future(workers.read(big, None, limit))
-            await asyncio.sleep(0.3)  # 15 MB take about a second to parse
+            # killed once it is parsing (15 MB take about a second of its CPU): a fixed
+            # sleep could miss the parse on a loaded machine
+            deadline = time.monotonic() + 30
+            while cpu_seconds([second]) - idle < 0.1 and not reading.done() \
+                    and time.monotonic() < deadline:
+                await asyncio.sleep(0.01)
+            assert not reading.done(), "the upload was read before the reader was killed"
             os.kill(second, signal.SIGKILL)
             return await reading
 
