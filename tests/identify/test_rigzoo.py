@@ -35,11 +35,6 @@ KNOWN_GAPS: dict[tuple[str, int], str] = {
                           "at the two ends of the travel, where the seal's position "
                           "dependence differs; the offset's 1.3 % "
                           "RMSE gain under the 3 % required",
-    ("servo-command", 0): "viscous refused (σ not determined) and Fc 16 % high: rows "
-                          "slower than the 500-count encoder resolves carry a friction "
-                          "error of about Fc under any model; the family passes on 2 of "
-                          "seeds 0-4, 2000, 2001 (0 and 3 before the adaptive "
-                          "acceleration window, 2 and 3 after it)",
     ("gearbox-timeseries", 0): "viscous-power refused: its fit takes Fc to 0 with n = "
                                "0.67 (truth 0.31), so linear viscous leaves Fc 80 % high",
     ("gearbox-coarse-spikes", 0): "Fc 39 % high, n = 0.51 (truth 0.31): the level and "
