@@ -210,7 +210,7 @@ def _diagnose(data: Dataset, progress, set_aside: SetAside | None = None,
         if full_errors is None:  # the base weighed no row apart
             full_errors = full_problem.resolution_errors(base.params)
         jumps = problem_for(data, current.effects).acceleration_errors(current.params)
-        data = with_weights(data, input_weights(np.hypot(full_errors, jumps), noise.value))
+        data = with_weights(data, input_weights(full_errors, noise.value, jumps))
     if screened:
         report(0.92, "refitting the chosen model on every row")
         final = refit(data, current, max_nfev=FULL_REFIT_EVALUATIONS) \

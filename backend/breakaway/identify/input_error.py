@@ -62,7 +62,7 @@ def misfit_ratio(fit, noise: NoiseFloor, inputs: float, errors=None) -> float:
         return float(np.sqrt(np.mean(np.where(variance > 0, r**2 / variance, np.inf))))
 
 
-def input_weights(errors, noise: float) -> np.ndarray | None:
+def input_weights(errors, noise: float, jumps=None) -> np.ndarray | None:
     """Each row's weight in a fit and a judgement, ``σ²/(σ² + e_i²)``: e_i the row's
     force error [N] that x's resolution sets
     (:meth:`~.models.timeseries.TimeseriesProblem.resolution_errors`: large just after
@@ -71,8 +71,12 @@ def input_weights(errors, noise: float) -> np.ndarray | None:
     uncertain counts for less: its error may be the reading of x, not friction; the
     weights single out such rows, so that at least half of the record keeps half its
     weight (a force with no noise of its own, a command, would otherwise hand the whole
-    fit to the few rows where x's reading does not matter). None where x is exact
-    (every weight 1)."""
+    fit to the few rows where x's reading does not matter). ``jumps`` [N], where given,
+    adds in quadrature what a's error where it jumps sets through the model
+    (:meth:`~.models.timeseries.TimeseriesProblem.acceleration_errors`). None where x
+    is exact (every weight 1)."""
+    if errors is not None and jumps is not None:
+        errors = np.hypot(errors, jumps)
     if errors is None or not np.any(errors > 0):
         return None
     floor = max(noise, float(np.median(errors)), 1e-12 * float(np.max(errors)))

@@ -231,9 +231,7 @@ class Judge:
         if id(current) not in self._weights:
             errors = current.problem.resolution_errors(current.params)
             jumps = current.problem.acceleration_errors(current.params) if self.jumps else None
-            if jumps is not None:
-                errors = np.hypot(errors, jumps)
-            self._weights[id(current)] = (current, input_weights(errors, self.noise))
+            self._weights[id(current)] = (current, input_weights(errors, self.noise, jumps))
         return self._weights[id(current)][1]
 
     def _weighted(self, r) -> float:

@@ -13,8 +13,6 @@ keeps its exponent only where the data ask for it (:mod:`.curves`)."""
 
 from __future__ import annotations
 
-import numpy as np
-
 from .csvdata import Dataset
 from .curves import NestedCurves
 from .effects import EFFECTS
@@ -140,8 +138,7 @@ class Selection(NestedCurves):
         if jumps is None or not jumps.any():
             return current, current_heldout
         self.reweighed = True
-        self.errors = np.hypot(self.errors, jumps)
-        self.data = with_weights(self.data, input_weights(self.errors, self.noise))
+        self.data = with_weights(self.data, input_weights(self.errors, self.noise, jumps))
         self.judgement.reweigh(self.data)
         self.restarts = best_base_starts(self.data)
         current = refit(self.data, current)
