@@ -25,11 +25,6 @@ SEEDS = (0, 1)
 #: Recordings whose report still misses part of what it must say, and what: strict, so
 #: that a change that mends one fails here until the entry is removed.
 KNOWN_GAPS = {
-    ("stick-slip-creep", 1): "viscous named, not there: once the inertia is named, the rows "
-                             "where a jumps (each slip of the stick-slip cycle) weigh for "
-                             "m_e times a's error there, and what they had outweighed "
-                             "passes as a viscous rise (new with that weighting; the "
-                             "family's development seeds 2000-2004 stay 5 of 5)",
     ("servo-axis", 0): "residual_structure leads with x (0.10) before x - x_r: this servo "
                        "turns at the ends of its travel, where the presliding misfit sits",
     ("servo-axis", 1): "offset named in place of asymmetry: an offset's one level and an "

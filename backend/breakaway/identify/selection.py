@@ -131,8 +131,14 @@ class Selection(NestedCurves):
         its weight. Not under a commanded force: there the noise floor is the
         command's step, x's reading sets every row's error, and what the jump rows had
         hidden, the presliding shape the library lacks, passed as an asymmetry or a play
-        on 3 of 5 torque ramps of a joint."""
+        on 3 of 5 torque ramps of a joint. Nor where the body sticks and slips: there
+        every slip starts and ends with a jump of a, the slips are all the sliding the
+        record holds, and weighing their rows apart set aside half of them (a dragged
+        stage then named a viscous rise with Fc on its bound, where its friction is a
+        plain Stribeck curve)."""
         if self.errors is None or self.reweighed:
+            return current, current_heldout
+        if current.problem.stick_slip is not None:
             return current, current_heldout
         jumps = current.problem.acceleration_errors(current.params)
         if jumps is None or not jumps.any():
