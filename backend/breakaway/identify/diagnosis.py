@@ -139,7 +139,8 @@ def _diagnose(data: Dataset, progress, set_aside: SetAside | None = None,
             screen = screening_blocks(data, full_problem.d)
             screen_base, base = _evaluate(screen, screen_base), _evaluate(data, base)
         noise = estimate(full_problem)
-    noise = replace(noise, command=is_command(full_problem, noise, base.residual()))
+        commanded = programmed_force(full_problem, noise)
+    noise = replace(noise, command=is_command(full_problem, noise, base.residual(), commanded))
     report(0.1, "screening candidate effects")
 
     # what x's resolution sets through the base model, row by row: every fit from here

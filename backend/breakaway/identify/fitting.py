@@ -139,10 +139,17 @@ def _solve(problem, theta0, rows, max_nfev):
     theta0 = np.clip(theta0, lo + 1e-9 * span, hi - 1e-9 * span)
 
     scales = row_scales(problem.data, rows)
+    target = problem.measured[rows]
+    # every row (the usual case): no copy of the prediction per evaluation
+    every_row = rows.size == problem.data.n and np.array_equal(rows, np.arange(rows.size))
 
     def residual(theta):
-        r = (problem.predict(problem.to_params(theta))[rows] - problem.measured[rows]) * scales
-        return np.where(np.isfinite(r), r, 1e6 * problem.scales.force)
+        prediction = problem.predict(problem.to_params(theta))
+        r = ((prediction if every_row else prediction[rows]) - target) * scales
+        broken = ~np.isfinite(r)
+        if broken.any():
+            r[broken] = 1e6 * problem.scales.force
+        return r
 
     return least_squares(residual, theta0, bounds=(lo, hi), method="trf", x_scale="jac",
                          max_nfev=max_nfev)
