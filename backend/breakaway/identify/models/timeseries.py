@@ -6,11 +6,11 @@ import weakref
 from dataclasses import replace
 
 import numpy as np
-from scipy.ndimage import maximum_filter1d, minimum_filter1d, uniform_filter1d
+from scipy.ndimage import uniform_filter1d
 
-from ...presliding import _presliding_kernel, shape_scalar
+from ...presliding import _presliding_kernel
 from ...steady import stribeck_kernel
-from ..derivatives import MAX_HALF_WINDOW, block_velocity, derivatives, positions
+from ..derivatives import block_velocity, derivatives, positions
 from ..local_fits import WINDOWS, acceleration_at, smooth_fit
 from ..effects import engaged_presliding
 from ..kinematics import REVERSAL_STEPS, direction, position_noise, quantum
@@ -36,9 +36,6 @@ SHORT_SMOOTHING = 13
 #: A body in presliding is held when it moves slower than this percentile of its speeds
 #: in gross sliding.
 HELD_SPEED_PERCENTILE = 10
-#: How far a held body may turn back unseen, in resolutions of x (the reversal
-#: hysteresis: a turn shorter than that is not a reversal to the model).
-HIDDEN_TURN_STEPS = REVERSAL_STEPS
 #: Samples averaged before the direction of a noisy x is read.
 NOISY_X_WINDOW = 21
 
@@ -280,36 +277,9 @@ class TimeseriesProblem(Problem):
         (E6') is steep; zero for exact x."""
         if self.resolution_x == 0:
             return np.zeros(self.x.size)
-        reading = min((self._reading_errors(params, window, seed)
-                       for window in {SHORT_SMOOTHING, self.derivatives.window}),
-                      key=lambda rows: float(np.mean(np.square(rows))))
-        return np.hypot(reading, self.hidden_turn_errors(params))
-
-    def hidden_turn_errors(self, params) -> np.ndarray:
-        """Each held row's RMS force error [N] from a turn the reading cannot show.
-
-        Where x moves less than the reversal hysteresis over the widest window v is
-        read over, the body may have turned back by up to that distance unseen (a joint
-        at rest while its load falls): under (E6') the friction then leaves its
-        predicted value F for the other direction's level at rest, by up to
-        (−d·Fs' − F)·f(s·h). The turn is as likely any distance short of h, or none:
-        the RMS is that bound over √3. Zero where the body visibly moves."""
-        reach = HIDDEN_TURN_STEPS * self.resolution_x
-        held = np.zeros(self.x.size, dtype=bool)
-        for a, b in self.blocks:
-            x = self.recorded_x[a:b]
-            span = 2 * MAX_HALF_WINDOW + 1
-            held[a:b] = (maximum_filter1d(x, span, mode="nearest")
-                         - minimum_filter1d(x, span, mode="nearest")) <= reach
-        errors = np.zeros(self.x.size)
-        if not held.any():
-            return errors
-        friction = self.predict(params, sensor=False)[held]
-        d = self.d[held]
-        _, Fs_other = self._levels(params, d > 0)
-        turned = shape_scalar(params["s"] * reach)
-        errors[held] = np.abs(friction + d * Fs_other) * turned / np.sqrt(3.0)
-        return errors
+        return min((self._reading_errors(params, window, seed)
+                    for window in {SHORT_SMOOTHING, self.derivatives.window}),
+                   key=lambda rows: float(np.mean(np.square(rows))))
 
     def acceleration_errors(self, params) -> np.ndarray | None:
         """Each row's force error [N] where a jumps, which no reading at the record's
