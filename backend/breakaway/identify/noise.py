@@ -345,7 +345,7 @@ def is_command(problem, noise: NoiseFloor, residual, programmed: bool | None = N
     (:func:`computed_from_x` at least :data:`CONTROLLER_R2`). Or its differences are
     far smaller than the base model's ``residual``'s, or negligible against the force
     scale. ``programmed`` is :func:`programmed_force`'s answer where the caller has it
-    for the same ``problem`` and ``noise`` (a second second on a million rows).
+    for the same ``problem`` and ``noise`` (it takes half a second on a million rows).
     """
     if problem.kind == "breakaway" or noise.method == "replicates":
         return False
