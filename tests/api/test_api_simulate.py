@@ -10,6 +10,8 @@ import pytest
 from breakaway.dynamics import simulate_breakaway, simulate_lugre_breakaway
 from breakaway.params import DEFAULTS, LUGRE_1995
 
+from coroutines import run_to_end
+
 RATES = [0.5, 2.01, 10.0]
 
 
@@ -131,7 +133,7 @@ def test_over_the_time_budget_is_a_422_and_the_worker_recovers(make_client):
         # the stuck worker was ended; the same runner starts a new one for the next run
         params = {name: DEFAULTS[name]
                   for name in ("Fc", "Fs", "V", "delta", "sigma", "s", "m", "z_ba")}
-        result = asyncio.run(client.app.state.simulations.run(
+        result = run_to_end(client.app.state.simulations.run(
             60.0, "presliding", [1.0], params, 1_000_000))
     expected = simulate_breakaway([1.0], **params, max_steps=1_000_000)
     assert result["u_ba"][0] == pytest.approx(expected.u_ba[0], rel=1e-12)
@@ -178,7 +180,7 @@ def test_one_run_at_a_time_and_the_budget_counts_from_the_start_of_the_run():
         return result
 
     try:
-        result = asyncio.run(scenario())
+        result = run_to_end(scenario())
     finally:
         runner.shutdown()
     expected = simulate_breakaway([0.01], **params, max_steps=1_000_000)

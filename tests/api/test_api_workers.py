@@ -33,6 +33,8 @@ from breakaway.identify.synthetic import make_dataset, to_csv
 from breakaway.params import DEFAULTS
 from breakaway.settings import get_settings
 
+from coroutines import run_to_end
+
 #: A fit of about 7 s here (two effects on 40,000 rows).
 LONG = to_csv(make_dataset("timeseries", ("viscous", "ripple"), seed=3, n=40_000)[0]).encode()
 SHORT = to_csv(make_dataset("steady", (), seed=1)[0]).encode()
@@ -199,7 +201,7 @@ def test_uploads_are_read_in_a_reader_process_replaced_when_it_dies(tmp_path, ca
     expected = parse_csv(SHORT)
     before = spawned(os.getpid())
     try:
-        read = asyncio.run(workers.read(SHORT, None, limit))
+        read = run_to_end(workers.read(SHORT, None, limit))
         assert read.kind == "steady"
         np.testing.assert_array_equal(read.columns["F"], expected.columns["F"])
         [first] = spawned(os.getpid()) - before
@@ -207,7 +209,7 @@ def test_uploads_are_read_in_a_reader_process_replaced_when_it_dies(tmp_path, ca
         os.kill(first, signal.SIGKILL)
         while alive(first):
             time.sleep(0.01)
-        read = asyncio.run(workers.read(SHORT, None, limit))
+        read = run_to_end(workers.read(SHORT, None, limit))
         np.testing.assert_array_equal(read.columns["v"], expected.columns["v"])
         [second] = spawned(os.getpid()) - before
 
@@ -225,7 +227,7 @@ def test_uploads_are_read_in_a_reader_process_replaced_when_it_dies(tmp_path, ca
             return await reading
 
         # killed while it parsed: the upload is read again by a third
-        assert asyncio.run(killed_midway()).n == 300_000
+        assert run_to_end(killed_midway()).n == 300_000
         assert len(spawned(os.getpid()) - before - {second}) == 1
         assert caplog.text.count("the upload reader died (attempt 1") == 2
     finally:
