@@ -3,6 +3,8 @@ of its own is accepted next to a larger unknown; a stand-in for the unknown is n
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 import pytest
 
@@ -258,14 +260,21 @@ def test_a_pair_is_named_only_where_each_earns_its_place_beside_the_other():
     assert r["final"]["params"]["m_e"] == pytest.approx(recording.truth["m_e"], rel=0.1)
 
 
+@functools.cache
+def _torque_estimate_report():
+    """A joint's torque estimate (rig zoo, seed 2004) and its report: two tests read
+    it, and its fit takes half a minute."""
+    from .rigzoo import families
+
+    recording = families()["estimated-torque"](2004)
+    return recording, report(diagnose(parse_csv(recording.csv)))
+
+
 def test_a_curve_chosen_before_the_effects_beside_it_must_still_earn_its_exponent():
     # a joint's torque estimate (programme less a gravity model): the curve came in
     # before the inertia and the offset with n = 0.64 ± 0.09 for a straight viscous
     # term, and took 18 % of Fc; beside them the exponent no longer earns its place
-    from .rigzoo import families
-
-    recording = families()["estimated-torque"](2004)
-    r = report(diagnose(parse_csv(recording.csv)))
+    _, r = _torque_estimate_report()
     assert "viscous" in r["effects"] and "viscous-power" not in r["effects"]
     assert "named viscous, its special case" in r["candidates"]["viscous-power"]["reason"]
 
@@ -275,10 +284,7 @@ def test_a_curve_chosen_before_the_effects_beside_it_must_still_earn_its_exponen
                    "gain is 5.5 % of an error whose rows move together over 135 samples), "
                    "and Fc takes the bias: 1.25 N·m for 1.40")
 def test_the_bias_of_a_torque_estimate_stays_named_beside_a_straightened_curve():
-    from .rigzoo import families
-
-    recording = families()["estimated-torque"](2004)
-    r = report(diagnose(parse_csv(recording.csv)))
+    recording, r = _torque_estimate_report()
     assert "offset" in r["effects"]
     assert r["final"]["params"]["Fc"] == pytest.approx(recording.truth["Fc"], rel=0.1)
 
