@@ -162,7 +162,11 @@ class FitWorkers:
         del data  # the worker has its copy; the server keeps none
         stop_at = None
         while True:
-            done, _ = await asyncio.wait({future}, timeout=POLL_S)
+            # once a cancel is seen, the next look is at the end of its grace, not a poll
+            # later: a cancel then ends within POLL_S + GRACE_S (0.75 s), inside the
+            # second it is promised (a poll after the grace took it to 1.0 s and past)
+            wait = POLL_S if stop_at is None else max(0.0, min(POLL_S, stop_at - loop.time()))
+            done, _ = await asyncio.wait({future}, timeout=wait)
             if done:
                 try:
                     future.result()
