@@ -32,6 +32,9 @@ from typing import Any, Callable, Iterator
 
 log = logging.getLogger("breakaway.api")
 
+#: Seconds :meth:`WorkerProcess.end` waits for its pool to release what it holds.
+END_WAIT_S = 2.0
+
 #: The signals a worker leaves to the server.
 _SERVER_SIGNALS = {signal.SIGINT, signal.SIGTERM}
 
@@ -106,9 +109,17 @@ class WorkerProcess:
             return
         for process in list((pool._processes or {}).values()):
             process.kill()
-        # waits for the pool's management thread, which sees the process gone, fails the
-        # running future, closes the queues and reaps the process: some 30 ms
-        pool.shutdown(wait=True, cancel_futures=True)
+        manager = pool._executor_manager_thread
+        pool.shutdown(wait=False, cancel_futures=True)
+        # the pool's management thread sees the process gone, fails the running future,
+        # closes the queues and reaps the process: some 30 ms. The wait is bounded: once,
+        # on a loaded machine, that thread never woke, and a restart called from a
+        # request held the server's event loop in this join for good
+        if manager is not None:
+            manager.join(END_WAIT_S)
+            if manager.is_alive():
+                log.warning("a worker pool did not end within %g s; left to end on its own",
+                            END_WAIT_S)
 
 
 def _report_warm_up(future: Future) -> None:
