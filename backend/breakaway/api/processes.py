@@ -109,17 +109,21 @@ class WorkerProcess:
             return
         for process in list((pool._processes or {}).values()):
             process.kill()
-        manager = pool._executor_manager_thread
+        manager, results = pool._executor_manager_thread, pool._result_queue
         pool.shutdown(wait=False, cancel_futures=True)
         # the pool's management thread sees the process gone, fails the running future,
-        # closes the queues and reaps the process: some 30 ms. The wait is bounded: once,
-        # on a loaded machine, that thread never woke, and a restart called from a
-        # request held the server's event loop in this join for good
-        if manager is not None:
-            manager.join(END_WAIT_S)
-            if manager.is_alive():
-                log.warning("a worker pool did not end within %g s; left to end on its own",
-                            END_WAIT_S)
+        # closes the call queue and reaps the process: some 30 ms; then the results' pipe
+        # is closed here, as shutdown(wait=True) would. The wait is bounded: once, on a
+        # loaded machine, that thread never woke, and a restart called from a request
+        # held the server's event loop in this join for good
+        if manager is None:
+            return
+        manager.join(END_WAIT_S)
+        if manager.is_alive():
+            log.warning("a worker pool did not end within %g s; left to end on its own",
+                        END_WAIT_S)
+        elif results is not None:
+            results.close()
 
 
 def _report_warm_up(future: Future) -> None:
