@@ -8,22 +8,16 @@ import pytest
 from fastapi.testclient import TestClient
 
 from breakaway.api.app import create_app
-from breakaway.settings import get_settings
+from settings_override import overridden_settings
 
 
 @contextlib.contextmanager
 def app_client(**settings):
     """A TestClient on a fresh app, with ``BREAKAWAY_<NAME>`` settings overridden."""
-    with pytest.MonkeyPatch.context() as patch:
-        for name, value in settings.items():
-            patch.setenv(f"BREAKAWAY_{name.upper()}", str(value))
-        get_settings.cache_clear()
-        try:
-            # raise_server_exceptions=False: a 500 must show up as a status, not an exception
-            with TestClient(create_app(), raise_server_exceptions=False) as client:
-                yield client
-        finally:
-            get_settings.cache_clear()
+    with overridden_settings(**settings):
+        # raise_server_exceptions=False: a 500 must show up as a status, not an exception
+        with TestClient(create_app(), raise_server_exceptions=False) as client:
+            yield client
 
 
 @pytest.fixture(scope="module")

@@ -18,7 +18,7 @@ from hypothesis import HealthCheck, settings
 from schemathesis.specs.openapi.checks import positive_data_acceptance
 
 from breakaway.api.app import create_app
-from breakaway.settings import get_settings
+from settings_override import overridden_settings
 
 
 schema = schemathesis.openapi.from_asgi("/openapi.json", create_app())
@@ -33,13 +33,8 @@ STEP_BUDGET = 50_000
 
 @pytest.fixture(autouse=True, scope="module")
 def _small_step_budget():
-    with pytest.MonkeyPatch.context() as patch:
-        patch.setenv("BREAKAWAY_SIMULATE_MAX_STEPS", str(STEP_BUDGET))
-        get_settings.cache_clear()
-        try:
-            yield
-        finally:
-            get_settings.cache_clear()
+    with overridden_settings(simulate_max_steps=STEP_BUDGET):
+        yield
 
 
 @schema.parametrize()

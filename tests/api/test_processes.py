@@ -47,8 +47,8 @@ def test_a_pool_that_never_ends_does_not_hold_the_server(caplog):
     worker = _started()
     pool = worker._pool
     process = next(iter(pool._processes.values()))
-    real, pool._executor_manager_thread = pool._executor_manager_thread, _NeverEnding()
-    stuck = pool._executor_manager_thread
+    real, stuck = pool._executor_manager_thread, _NeverEnding()
+    pool._executor_manager_thread = stuck
     with caplog.at_level(logging.WARNING, logger="breakaway.api"):
         worker.end()
     assert stuck.joined == [processes.END_WAIT_S]  # a bounded wait, not join()
