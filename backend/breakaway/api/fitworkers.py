@@ -98,6 +98,17 @@ class FitWorkers:
         self._reader = WorkerProcess(niceness)  # parses the uploads
         self._free: asyncio.Queue[WorkerProcess] | None = None
         self._tasks: set[asyncio.Task] = set()
+        #: the running fits' watchers in this process, woken by a cancel
+        self._cancelled: dict[str, asyncio.Event] = {}
+
+    def cancel(self, job_id: str) -> None:
+        """Ask a queued or running fit to stop (``DELETE /api/fit/jobs/{id}``): its flag in
+        the store, which its worker reads at its next progress, and its watcher in this
+        process woken now, not at its next poll."""
+        self.store.request_cancel(job_id)
+        event = self._cancelled.get(job_id)
+        if event is not None:
+            event.set()
 
     def full(self) -> bool:
         """Whether this server process already has as many fits as it takes."""
@@ -155,19 +166,35 @@ class FitWorkers:
         # the time limit counts from the fit's first progress in its worker, not from the
         # queue nor from a fresh worker's start-up (its imports take seconds on a busy
         # machine); a worker that never begins is stopped START_S after the limit
-        submitted, begun = loop.time(), None
+        submitted = loop.time()
         future = asyncio.wrap_future(slot.submit(run_fit, str(store.path), job_id, data))
         # a fit whose process was ended still resolves its future (broken pool): read it
         future.add_done_callback(lambda f: f.cancelled() or f.exception())
         del data  # the worker has its copy; the server keeps none
-        stop_at = None
+        cancelled = self._cancelled[job_id] = asyncio.Event()
+        woken = asyncio.ensure_future(cancelled.wait())
+        try:
+            await self._follow(slot, job_id, future, woken, gone, submitted)
+        finally:
+            woken.cancel()
+            self._cancelled.pop(job_id, None)
+
+    async def _follow(self, slot: WorkerProcess, job_id: str, future, woken, gone,
+                      submitted: float) -> None:
+        store = self.store
+        loop = asyncio.get_running_loop()
+        begun = stop_at = None
         while True:
-            # once a cancel is seen, the next look is at the end of its grace, not a poll
-            # later: a cancel then ends within POLL_S + GRACE_S (0.75 s), inside the
-            # second it is promised (a poll after the grace took it to 1.0 s and past)
+            # a cancel through this process wakes the watcher at once; one through
+            # another is seen at the next poll. Once seen, the next look is at the end of
+            # its grace: a cancel ends within GRACE_S (0.5 s; POLL_S more through
+            # another process) plus the time to end the worker, inside the second it is
+            # promised (a poll after the grace had taken it to 1.0 s and past)
             wait = POLL_S if stop_at is None else max(0.0, min(POLL_S, stop_at - loop.time()))
-            done, _ = await asyncio.wait({future}, timeout=wait)
-            if done:
+            watched = {future} if stop_at is not None or woken.done() else {future, woken}
+            done, _ = await asyncio.wait(watched, timeout=wait,
+                                         return_when=asyncio.FIRST_COMPLETED)
+            if future in done:
                 try:
                     future.result()
                 except BrokenProcessPool:

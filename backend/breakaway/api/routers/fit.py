@@ -133,7 +133,7 @@ async def fit_status(job_id: str, request: Request) -> FitJobStatus:
 @router.delete("/fit/jobs/{job_id}", response_model=FitJobStatus, responses=_MISSING)
 async def cancel_fit(job_id: str, request: Request) -> FitJobStatus:
     """Cancel a queued or running fit: it stops within a second; a finished one is left."""
-    request.app.state.fit_workers.store.request_cancel(job_id)
+    request.app.state.fit_workers.cancel(job_id)
     return _status(_job(request, job_id))
 
 
