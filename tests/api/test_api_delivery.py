@@ -9,6 +9,7 @@ from fastapi.testclient import TestClient
 from breakaway.api.app import create_app
 from breakaway.api.routers.assets import PLOTLY_BUNDLE
 from breakaway.settings import get_settings
+from settings_override import overridden_settings
 
 PLOTLY_JS = get_settings().frontend_dir / PLOTLY_BUNDLE
 
@@ -105,25 +106,19 @@ def test_a_null_origin_is_refused_like_another_site(client):
     assert response.json()["detail"][0]["loc"] == ["header", "origin"]
 
 
-def test_cors_is_off_unless_configured(client, monkeypatch):
-    from breakaway.settings import get_settings
-
+def test_cors_is_off_unless_configured(client):
     preflight = {"Origin": "https://course.example", "Access-Control-Request-Method": "POST"}
     off = client.options("/api/explore", headers=preflight)
     assert "access-control-allow-origin" not in off.headers
     assert client.post("/api/explore", json={},
                        headers={"Origin": "https://course.example"}).status_code == 403
-    monkeypatch.setenv("BREAKAWAY_CORS_ORIGINS", "https://course.example")
-    get_settings.cache_clear()
-    try:
-        with TestClient(create_app()) as allowed:
-            on = allowed.options("/api/explore", headers=preflight)
-            assert on.headers["access-control-allow-origin"] == "https://course.example"
-            answer = allowed.post("/api/explore", json={},
-                                  headers={"Origin": "https://course.example"})
-            assert answer.status_code == 200
-            assert answer.headers["access-control-allow-origin"] == "https://course.example"
-            assert allowed.post("/api/explore", json={},
-                                headers={"Origin": "https://evil.example"}).status_code == 403
-    finally:
-        get_settings.cache_clear()
+    with overridden_settings(cors_origins="https://course.example"), \
+            TestClient(create_app()) as allowed:
+        on = allowed.options("/api/explore", headers=preflight)
+        assert on.headers["access-control-allow-origin"] == "https://course.example"
+        answer = allowed.post("/api/explore", json={},
+                              headers={"Origin": "https://course.example"})
+        assert answer.status_code == 200
+        assert answer.headers["access-control-allow-origin"] == "https://course.example"
+        assert allowed.post("/api/explore", json={},
+                            headers={"Origin": "https://evil.example"}).status_code == 403

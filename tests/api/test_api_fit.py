@@ -7,11 +7,7 @@ import time
 import numpy as np
 import pytest
 
-from fastapi.testclient import TestClient
-
-from breakaway.api.app import create_app
 from breakaway.identify.synthetic import make_dataset, to_csv, with_force
-from breakaway.settings import get_settings
 
 
 def _csv(kind, effects=(), seed=0, **kwargs) -> bytes:
@@ -82,14 +78,9 @@ def test_missing_file_is_a_422(client):
     assert response.json()["detail"][0]["loc"][-1] == "file"
 
 
-def test_upload_over_the_limit_is_refused(monkeypatch):
-    monkeypatch.setenv("BREAKAWAY_MAX_UPLOAD_BYTES", "2000")
-    get_settings.cache_clear()
-    try:
-        with TestClient(create_app(), raise_server_exceptions=False) as small:
-            response = small.post("/api/fit", files=_upload(_csv("steady", (), seed=0)))
-    finally:
-        get_settings.cache_clear()
+def test_upload_over_the_limit_is_refused(make_client):
+    with make_client(max_upload_bytes=2000) as small:
+        response = small.post("/api/fit", files=_upload(_csv("steady", (), seed=0)))
     assert response.status_code in (413, 422)
     assert "limit" in response.text
 

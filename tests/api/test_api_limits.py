@@ -8,7 +8,6 @@ from fastapi.testclient import TestClient
 
 from breakaway.api.app import create_app
 from breakaway.api.schemas import MAGNITUDE
-from breakaway.settings import get_settings
 
 LEAKS = ("Traceback", "Error:", "ZeroDivision", "Overflow", "File \"")
 
@@ -65,14 +64,9 @@ def test_the_ends_of_the_range_are_computed_or_refused_cleanly(client, path, bod
 
 
 @pytest.fixture
-def small_limit(monkeypatch):
-    monkeypatch.setenv("BREAKAWAY_MAX_UPLOAD_BYTES", "4096")
-    get_settings.cache_clear()
-    try:
-        with TestClient(create_app(), raise_server_exceptions=False) as c:
-            yield c
-    finally:
-        get_settings.cache_clear()
+def small_limit(make_client):
+    with make_client(max_upload_bytes=4096) as c:
+        yield c
 
 
 @pytest.mark.parametrize("size", [4097, 4096 + 40_000, 2_000_000])

@@ -8,6 +8,7 @@ clean, and a shutdown ends every worker and leaks nothing."""
 from __future__ import annotations
 
 import asyncio
+import contextlib
 import os
 import signal
 import socket
@@ -32,6 +33,7 @@ from breakaway.identify import parse_csv
 from breakaway.identify.synthetic import make_dataset, to_csv
 from breakaway.params import DEFAULTS
 from breakaway.settings import get_settings
+from settings_override import overridden_settings
 
 from coroutines import run_to_end
 
@@ -113,24 +115,15 @@ def wait_status(get, job_id: str, wanted: set[str], timeout: float) -> dict:
 
 
 @pytest.fixture
-def app_with(monkeypatch, tmp_path):
+def app_with(tmp_path):
     """A TestClient on an app with these settings and its own data directory."""
-    clients = []
+    with contextlib.ExitStack() as stack:
 
-    def make(**settings) -> TestClient:
-        monkeypatch.setenv("BREAKAWAY_DATA_DIR", str(tmp_path / "data"))
-        for key, value in settings.items():
-            monkeypatch.setenv(f"BREAKAWAY_{key.upper()}", str(value))
-        get_settings.cache_clear()
-        client = TestClient(create_app())
-        client.__enter__()
-        clients.append(client)
-        return client
+        def make(**settings) -> TestClient:
+            stack.enter_context(overridden_settings(data_dir=tmp_path / "data", **settings))
+            return stack.enter_context(TestClient(create_app()))
 
-    yield make
-    for client in clients:
-        client.__exit__(None, None, None)
-    get_settings.cache_clear()
+        yield make
 
 
 def test_a_cancelled_job_frees_the_cpu_within_a_second(app_with):
