@@ -200,9 +200,7 @@ def direction(x, h: float = 0.0):
     -------
     numpy.ndarray
         ±1 per sample. A reversal is placed at the running extreme, so (E6') takes
-        ``x_r`` there. The first direction is that of the first move beyond
-        ``h / REVERSAL_STEPS`` (one resolution), so a first swing inside the hysteresis
-        keeps its own direction.
+        ``x_r`` there.
     """
     x = np.ascontiguousarray(x, dtype=float)
     if h <= 0:
