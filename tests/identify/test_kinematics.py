@@ -110,28 +110,6 @@ def test_jitter_of_one_count_is_no_reversal(strokes):
     assert np.max(np.abs(found - true_turns)) <= 40
 
 
-def test_a_first_swing_inside_the_hysteresis_keeps_its_own_direction():
-    # an excitation that swells from small: the first swing rises 2 counts, inside the
-    # 3 counts of hysteresis, and the next falls 6; the body turned at the first swing's
-    # top, and the rise before it moved positive (read from the first move beyond the
-    # hysteresis, the whole rise had taken the fall's direction)
-    count = 1e-3
-    t = np.linspace(0.0, 2.0, 2001)
-    swing = np.where(t < 0.5, 2.2 * np.sin(np.pi * t),
-                     2.2 - 8.2 * np.sin(0.5 * np.pi * np.minimum(t - 0.5, 1.0)))
-    x = np.round(swing) * count
-    d = direction(x, 3 * count)
-    top = int(np.argmax(x))
-    rise = (x > 0) & (t < t[top])
-    assert rise.any() and np.all(d[rise] == 1.0)
-    assert np.all(d[t > 0.75] == -1.0)
-    assert np.count_nonzero(np.diff(d)) == 1
-    # a count that flickers by one at the start does not set the direction: the first
-    # direction is that of the first move beyond one count
-    flicker = np.concatenate([[0.0, -1.0, 0.0, -1.0, 0.0], np.arange(1.0, 8.0)]) * count
-    assert np.all(direction(flicker, 3 * count) == 1.0)
-
-
 def test_slow_motion_is_timed_over_several_counts(strokes):
     t, x = strokes
     count = 2e-6

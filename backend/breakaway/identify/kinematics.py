@@ -140,12 +140,8 @@ def _direction_kernel(x, h):
     n = x.size
     d = np.ones(n)
     start = -1
-    # the first move beyond one resolution sets the first direction: a record that
-    # starts with a swing inside the hysteresis and then moves the other way beyond it
-    # (an excitation that swells from small) turned at that swing's extreme; read from
-    # the first move beyond the hysteresis, the whole swing took the later direction
     for i in range(1, n):
-        if abs(x[i] - x[0]) > h / REVERSAL_STEPS:
+        if abs(x[i] - x[0]) > h:
             start = i
             break
     if start < 0:
