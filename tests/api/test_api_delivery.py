@@ -9,7 +9,6 @@ from fastapi.testclient import TestClient
 from breakaway.api.app import create_app
 from breakaway.api.routers.assets import PLOTLY_BUNDLE
 from breakaway.settings import get_settings
-from settings_override import overridden_settings
 
 PLOTLY_JS = get_settings().frontend_dir / PLOTLY_BUNDLE
 
@@ -106,14 +105,13 @@ def test_a_null_origin_is_refused_like_another_site(client):
     assert response.json()["detail"][0]["loc"] == ["header", "origin"]
 
 
-def test_cors_is_off_unless_configured(client):
+def test_cors_is_off_unless_configured(client, make_client):
     preflight = {"Origin": "https://course.example", "Access-Control-Request-Method": "POST"}
     off = client.options("/api/explore", headers=preflight)
     assert "access-control-allow-origin" not in off.headers
     assert client.post("/api/explore", json={},
                        headers={"Origin": "https://course.example"}).status_code == 403
-    with overridden_settings(cors_origins="https://course.example"), \
-            TestClient(create_app()) as allowed:
+    with make_client(cors_origins="https://course.example") as allowed:
         on = allowed.options("/api/explore", headers=preflight)
         assert on.headers["access-control-allow-origin"] == "https://course.example"
         answer = allowed.post("/api/explore", json={},
