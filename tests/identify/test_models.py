@@ -8,12 +8,17 @@ import math
 import numpy as np
 import pytest
 
+from breakaway.identify import parse_csv
 from breakaway.identify.effects import lag_filter, play_operator
+from breakaway.identify.fitting import fit_model
+from breakaway.identify.input_error import input_weights
 from breakaway.identify.models import problem_for as Problem
 from breakaway.identify.synthetic import BASE_TRUTH, make_dataset
 from breakaway.presliding import presliding_force
 from breakaway.quasistatic import breakaway_force, presliding_velocity
 from breakaway.steady import steady_state_force
+
+from . import cases, machines, rigzoo
 
 
 @pytest.fixture(scope="module")
@@ -114,3 +119,67 @@ def test_parameter_vector_round_trip(kind, effects):
     assert back.keys() == truth.keys()
     for name, value in truth.items():
         assert back[name] == pytest.approx(value, rel=1e-12), name
+
+
+# ---------------------------------------------------------------------------------
+# stops: where the body may have halted and turned within what the encoder shows
+# ---------------------------------------------------------------------------------
+
+
+def _at_truth(record):
+    """``record``'s model with its required effects, evaluated at its hidden truth."""
+    names = ("Fc", "Fs", "V", "delta", "s", "sigma", "n", "F_offset", "m_e")
+    start = {k: float(record.truth[k]) for k in names if k in record.truth}
+    return fit_model(parse_csv(record.csv), tuple(sorted(record.expect.required)),
+                     starts=[start], screen=1, max_nfev=1)
+
+
+def test_a_servo_held_by_a_swinging_command_is_weighed_apart_where_it_stops():
+    # a torque command swings through ±Fs while the axis sits on one or two counts: the
+    # model at the truth misses the friction there by up to 2 Fs, since the turns it
+    # makes within the counts are not read. The stops hold those rows, and weighing
+    # by their errors leaves the rows where the reading says what the body did
+    record = rigzoo.families()["servo-command"](2)
+    fit = _at_truth(record)
+    problem, params = fit.problem, fit.params
+    missed = np.abs(record.hidden["friction"] - problem.predict(params, sensor=False))
+    far = missed > 0.1 * record.truth["Fc"]
+    stops = problem.stop_rows(params)
+    assert stops is not None
+    assert np.mean(stops[far]) > 0.8
+    noise = record.truth["dac"] / math.sqrt(12)
+    errors = problem.resolution_errors(params)
+    reading = np.sqrt(np.maximum(errors**2 - problem._stop_errors(params) ** 2, 0.0))
+
+    def rms(weights):
+        return math.sqrt(np.sum(weights * missed**2) / np.sum(weights))
+
+    # measured 0.0154 against 0.0343 N·m
+    assert rms(input_weights(errors, noise, stops=stops)) < 0.6 * rms(
+        input_weights(reading, noise))
+
+
+def test_a_rest_at_a_steady_force_is_no_stop_error():
+    # strokes one way with rests between, read by an encoder of 25 counts a stroke: the
+    # rests are stops, but the force on the body stays put there, so nothing turned
+    rng = np.random.default_rng(3)
+    t = np.arange(6000) / 1000.0
+    x = np.interp(t, [0, 1, 2, 3, 4, 5, 6], [0, 0.01, 0.01, 0.02, 0.02, 0.03, 0.03])
+    count = 4e-4
+    F = 10.0 + 0.05 * rng.standard_normal(t.size)
+    problem = Problem(cases.dataset("timeseries",
+                                    {"t": t, "x": np.round(x / count) * count, "F": F}))
+    params = BASE_TRUTH["timeseries"]
+    assert len(problem.stops) == 3
+    errors = problem._stop_errors(params)
+    # at the force's noise (0.05 N), where a turn would have moved it by 2 Fc = 20 N
+    assert np.sqrt(np.mean(errors**2)) < 0.1
+    assert np.max(errors) < 0.2
+
+
+def test_a_presliding_test_has_no_stops_in_force():
+    # a torque sine far below Fs: the body never slides, every row is presliding
+    fit = fit_model(parse_csv(machines.families()["presliding-sine"](1).csv))
+    assert fit.problem.stops
+    assert fit.problem.stop_rows(fit.params) is None
+    assert not np.any(fit.problem._stop_errors(fit.params))

@@ -47,6 +47,20 @@ def test_weights_single_out_the_rows_that_x_s_reading_makes_uncertain():
     assert input_weights(np.zeros(10), 0.1) is None  # exact x
 
 
+def test_rows_in_stops_set_no_floor_for_the_rest():
+    # a servo on a count for 60 % of its record under a noise-free command: the rows
+    # where it moves keep their weight, those in the stops lose theirs
+    rng = np.random.default_rng(1)
+    stops = rng.random(1000) < 0.6
+    errors = np.where(stops, rng.uniform(0.5, 2.0, 1000), rng.uniform(0.001, 0.01, 1000))
+    apart = input_weights(errors, 1e-6, stops=stops)
+    assert np.mean(apart[~stops] >= 0.5) >= 0.5
+    assert np.max(apart[stops]) < 1e-3
+    # the floor over every row would be a stop's error, and the stops keep much of theirs
+    together = input_weights(errors, 1e-6)
+    assert np.median(together[stops]) > 0.1
+
+
 def test_a_coarser_encoder_sets_more_of_the_error():
     fine, _ = cases.encoder_record(seed=2, count=2e-6)
     coarse, _ = cases.encoder_record(seed=2, count=4e-5)

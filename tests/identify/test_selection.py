@@ -273,10 +273,12 @@ def _torque_estimate_report():
 def test_a_curve_chosen_before_the_effects_beside_it_must_still_earn_its_exponent():
     # a joint's torque estimate (programme less a gravity model): the curve came in
     # before the inertia and the offset with n = 0.64 ± 0.09 for a straight viscous
-    # term, and took 18 % of Fc; beside them the exponent no longer earns its place
+    # term, and took 18 % of Fc; beside them the exponent no longer earns its place.
+    # With the rows where the joint stops under its programme weighed apart, the
+    # curve no longer comes in at all: its exponent's size is not determined
     _, r = _torque_estimate_report()
     assert "viscous" in r["effects"] and "viscous-power" not in r["effects"]
-    assert "named viscous, its special case" in r["candidates"]["viscous-power"]["reason"]
+    assert not r["candidates"]["viscous-power"]["accepted"]
 
 
 @pytest.mark.xfail(strict=True, reason="beside the straightened viscous term and the inertia "
@@ -354,8 +356,9 @@ def test_an_rmse_that_rises_beside_an_allowance_is_said_to_rise():
     after = H @ np.array([0.3, -0.2, 0.1]) + 0.001 * rng.standard_normal(n)
 
     def fit(residual, names):
-        problem = SimpleNamespace(kind="steady", names=names)
-        return SimpleNamespace(n=n, residual=lambda: residual, problem=problem, rmse=0.1)
+        problem = SimpleNamespace(kind="steady", names=names, stop_rows=lambda params: None)
+        return SimpleNamespace(n=n, residual=lambda: residual, problem=problem, rmse=0.1,
+                               params={})
 
     data = SimpleNamespace(weights=None, unit=lambda linear: linear)
     judge = Judge(data, 0.1)

@@ -147,13 +147,16 @@ def _diagnose(data: Dataset, progress, set_aside: SetAside | None = None,
     # on weighs each row by the inverse of its error's variance
     errors = screen_base.problem.resolution_errors(screen_base.params) \
         if data.kind == "timeseries" else None
-    weights = input_weights(errors, noise.value) if errors is not None else None
+    weights = input_weights(errors, noise.value,
+                            stops=screen_base.problem.stop_rows(screen_base.params)) \
+        if errors is not None else None
     full_errors = None
     if weights is not None:
         screen_base = refit(with_weights(screen, weights), screen_base)
         if screened:
             full_errors = full_problem.resolution_errors(base.params)
-            data = with_weights(data, input_weights(full_errors, noise.value))
+            data = with_weights(data, input_weights(full_errors, noise.value,
+                                                    stops=full_problem.stop_rows(base.params)))
             # the weighted base on every row: the screened solution, evaluated (a
             # polish on every row moves it little and costs a Jacobian per step)
             base = _evaluate(data, screen_base)
@@ -211,7 +214,8 @@ def _diagnose(data: Dataset, progress, set_aside: SetAside | None = None,
         if full_errors is None:  # the base weighed no row apart
             full_errors = full_problem.resolution_errors(base.params)
         jumps = problem_for(data, current.effects).acceleration_errors(current.params)
-        data = with_weights(data, input_weights(full_errors, noise.value, jumps))
+        data = with_weights(data, input_weights(full_errors, noise.value, jumps,
+                                                full_problem.stop_rows(base.params)))
     if screened:
         report(0.92, "refitting the chosen model on every row")
         final = refit(data, current, max_nfev=FULL_REFIT_EVALUATIONS) \

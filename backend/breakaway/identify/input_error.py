@@ -62,7 +62,7 @@ def misfit_ratio(fit, noise: NoiseFloor, inputs: float, errors=None) -> float:
         return float(np.sqrt(np.mean(np.where(variance > 0, r**2 / variance, np.inf))))
 
 
-def input_weights(errors, noise: float, jumps=None) -> np.ndarray | None:
+def input_weights(errors, noise: float, jumps=None, stops=None) -> np.ndarray | None:
     """Each row's weight in a fit and a judgement, ``σ²/(σ² + e_i²)``: e_i the row's
     force error [N] that x's resolution sets
     (:meth:`~.models.timeseries.TimeseriesProblem.resolution_errors`: large just after
@@ -73,13 +73,18 @@ def input_weights(errors, noise: float, jumps=None) -> np.ndarray | None:
     weight (a force with no noise of its own, a command, would otherwise hand the whole
     fit to the few rows where x's reading does not matter). ``jumps`` [N], where given,
     adds in quadrature what a's error where it jumps sets through the model
-    (:meth:`~.models.timeseries.TimeseriesProblem.acceleration_errors`). None where x
-    is exact (every weight 1)."""
+    (:meth:`~.models.timeseries.TimeseriesProblem.acceleration_errors`). ``stops``,
+    where given, marks the rows where the body may have halted and turned unseen
+    (:meth:`~.models.timeseries.TimeseriesProblem.stop_rows`): the median is taken
+    over the other rows, since a servo that sits on a count for half its record under
+    a command has no such row to trust, and the rows where it moves are not few. None
+    where x is exact (every weight 1)."""
     if errors is not None and jumps is not None:
         errors = np.hypot(errors, jumps)
     if errors is None or not np.any(errors > 0):
         return None
-    floor = max(noise, float(np.median(errors)), 1e-12 * float(np.max(errors)))
+    moving = errors if stops is None or stops.all() else errors[~stops]
+    floor = max(noise, float(np.median(moving)), 1e-12 * float(np.max(errors)))
     return floor**2 / (floor**2 + np.square(errors))
 
 

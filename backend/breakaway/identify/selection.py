@@ -144,7 +144,8 @@ class Selection(NestedCurves):
         if jumps is None or not jumps.any():
             return current, current_heldout
         self.reweighed = True
-        self.data = with_weights(self.data, input_weights(self.errors, self.noise, jumps))
+        stops = current.problem.stop_rows(current.params)
+        self.data = with_weights(self.data, input_weights(self.errors, self.noise, jumps, stops))
         self.judgement.reweigh(self.data)
         self.restarts = best_base_starts(self.data)
         current = refit(self.data, current)

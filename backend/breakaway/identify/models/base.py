@@ -113,6 +113,11 @@ class Problem:
         p.update(self.fixed)
         return {name: p[name] for name in self.all_names}
 
+    def stop_rows(self, params) -> np.ndarray | None:
+        """Rows where the body may have halted and turned unseen under ``params`` (a
+        time series on an encoder); None where there are none."""
+        return None
+
     def bounds(self):
         lo, hi = [], []
         for name in self.names:

@@ -6,6 +6,7 @@ import weakref
 from dataclasses import replace
 
 import numpy as np
+from numba import njit
 from scipy.ndimage import uniform_filter1d
 
 from ...presliding import _presliding_kernel
@@ -38,6 +39,15 @@ SHORT_SMOOTHING = 13
 HELD_SPEED_PERCENTILE = 10
 #: Samples averaged before the direction of a noisy x is read.
 NOISY_X_WINDOW = 21
+#: A stretch of the reading within one count boundary or the reversal hysteresis is a
+#: stop when it lasts, per count it shows, this many times as long as either run of
+#: one count beside it, and at least :data:`STOP_MIN_SAMPLES` samples: the body slowed
+#: far below the speed it came and left with, and may have halted and turned there.
+STOP_RATIO = 2.0
+STOP_MIN_SAMPLES = 4
+#: The share of the rows outside stops in gross sliding for a record to slide between
+#: its stops (:meth:`TimeseriesProblem._slides_between_stops`).
+SLIDING_BETWEEN_STOPS = 0.5
 
 
 def with_weights(data, weights):
@@ -47,6 +57,52 @@ def with_weights(data, weights):
     if data in _KINEMATICS:
         _KINEMATICS[weighted] = _KINEMATICS[data]
     return weighted
+
+
+@njit(cache=True)
+def _stop_groups(values, lengths, span, quantum, ratio, min_samples):
+    """[first, stop) of the runs (``values`` of one count each, ``lengths`` samples)
+    that make a stop: grouped from the left while their values stay within ``span``,
+    a group is a stop where it lasts ``ratio`` times the longer run beside it per count
+    it shows, and at least ``min_samples`` (a loop: records hold millions of runs)."""
+    n = values.size
+    firsts = np.empty(n, dtype=np.int64)
+    stops = np.empty(n, dtype=np.int64)
+    found = 0
+    first = 0
+    low = high = values[0]
+    length = lengths[0]
+    for j in range(1, n + 1):
+        if j < n:
+            new_low, new_high = min(low, values[j]), max(high, values[j])
+            if new_high - new_low <= span:
+                low, high = new_low, new_high
+                length += lengths[j]
+                continue
+        before = lengths[first - 1] if first > 0 else 0
+        after = lengths[j] if j < n else 0
+        counts = np.floor((high - low) / quantum + 0.5) + 1.0
+        if (first > 0 or j < n) and length >= min_samples \
+                and length >= ratio * counts * max(before, after):
+            firsts[found] = first
+            stops[found] = j
+            found += 1
+        if j < n:
+            first = j
+            low = high = values[j]
+            length = lengths[j]
+    return firsts[:found], stops[:found]
+
+
+def _merged(intervals):
+    """Overlapping [start, stop) intervals joined, in order."""
+    out = []
+    for start, stop in sorted(intervals):
+        if out and start <= out[-1][1]:
+            out[-1] = (out[-1][0], max(out[-1][1], stop))
+        else:
+            out.append((start, stop))
+    return out
 
 
 class TimeseriesProblem(Problem):
@@ -97,10 +153,15 @@ class TimeseriesProblem(Problem):
             accel=_robust_scale(a),
             step=max(float(np.median(moving)) if moving.size else 1.0, self.quantum_x),
         )
-        return {"quantum_x": self.quantum_x, "noise_x": self.noise_x,
+        #: the stretches where the body may have halted and turned unseen, and how far
+        #: the measured force bounds what such a turn changed
+        self.stops = self._stop_runs() if self.quantum_x > 0 else []
+        self.d = self.kinematic_direction(self.x)
+        return {"quantum_x": self.quantum_x, "noise_x": self.noise_x, "stops": self.stops,
+                "stop_bounds": self._stop_bounds(),
                 "resolution_x": self.resolution_x, "hysteresis": self.hysteresis, "x": self.x,
                 "derivatives": self.derivatives, "v": v,
-                "log_speed": log_speed, "a": a, "d": self.kinematic_direction(self.x),
+                "log_speed": log_speed, "a": a, "d": self.d,
                 "scales": scales}
 
     def model_positions(self, recorded):
@@ -274,12 +335,96 @@ class TimeseriesProblem(Problem):
     def resolution_errors(self, params, seed=0) -> np.ndarray:
         """Each row's RMS force error [N] that the resolution of x causes in the model
         (:meth:`resolution_noise`, row by row): largest just after reversals, where
-        (E6') is steep; zero for exact x."""
+        (E6') is steep, and in stops, where the body may have turned unseen
+        (:meth:`_stop_errors`); zero for exact x."""
         if self.resolution_x == 0:
             return np.zeros(self.x.size)
-        return min((self._reading_errors(params, window, seed)
-                    for window in {SHORT_SMOOTHING, self.derivatives.window}),
-                   key=lambda rows: float(np.mean(np.square(rows))))
+        reading = min((self._reading_errors(params, window, seed)
+                       for window in {SHORT_SMOOTHING, self.derivatives.window}),
+                      key=lambda rows: float(np.mean(np.square(rows))))
+        return np.hypot(reading, self._stop_errors(params))
+
+    def stop_rows(self, params) -> np.ndarray | None:
+        """Rows within a stop (:meth:`_stop_runs`) where the body slides between its
+        stops under ``params`` (:meth:`_slides_between_stops`), or None."""
+        if not self.stops:
+            return None
+        mask = self._in_stops()
+        return mask if self._slides_between_stops(params, mask) else None
+
+    def _in_stops(self) -> np.ndarray:
+        mask = np.zeros(self.x.size, dtype=bool)
+        for a, b in self.stops:
+            mask[a:b] = True
+        return mask
+
+    def _stop_runs(self):
+        """[start, stop) of each stop: a stretch whose reading stays within one count
+        boundary (a body at rest on it flickers between two counts) or within the
+        reversal hysteresis (turns inside it are not read as turns), and spends, per
+        count it shows, :data:`STOP_RATIO` times as long as the run of one count before
+        and after it, and at least :data:`STOP_MIN_SAMPLES` samples."""
+        stops = []
+        for a, b in self.blocks:
+            x = self.recorded_x[a:b]
+            edges = np.r_[0, np.flatnonzero(np.diff(x)) + 1, x.size]
+            values, lengths = x[edges[:-1]], np.diff(edges)
+            for span in (1.5 * self.quantum_x, self.hysteresis + 0.5 * self.quantum_x):
+                firsts, lasts = _stop_groups(values, lengths, span, self.quantum_x,
+                                             STOP_RATIO, STOP_MIN_SAMPLES)
+                stops.extend(zip((a + edges[firsts]).tolist(), (a + edges[lasts]).tolist()))
+        return _merged(stops)
+
+    def _stop_bounds(self) -> np.ndarray | None:
+        """How much friction a turn unseen in each stop can have changed, row by row
+        [N]: the measured force's excursion since the stop began, less three times the
+        force's noise. A body at rest barely accelerates, so the force on it is its
+        friction: a force that stays put while the reading does (a velocity loop
+        holding a rest) says that nothing turned. Held after the stop until the next
+        one, while the body re-engages."""
+        if not self.stops:
+            return None
+        F = self.measured
+        noise = 1.4826 * float(np.median(np.abs(np.diff(F)))) / np.sqrt(2.0)
+        bounds = np.zeros(F.size)
+        ends = [a for a, _ in self.stops[1:]] + [F.size]
+        for (a, b), following in zip(self.stops, ends):
+            excursion = np.abs(F[a:b] - F[a])
+            bounds[a:b] = np.maximum.accumulate(np.maximum(excursion - 3.0 * noise, 0.0))
+            bounds[b:following] = bounds[b - 1]
+        return bounds
+
+    def _slides_between_stops(self, params, in_stops) -> bool:
+        """Whether the body slides where it is not stopped: at least
+        :data:`SLIDING_BETWEEN_STOPS` of the other rows in gross sliding under
+        ``params``. A presliding test never slides far past its presliding distance;
+        every row of it is presliding, its stops are no less informative than the rest,
+        and what the reading leaves open there is the re-reading's to say."""
+        z = self.presliding_fraction(params)[~in_stops]
+        return z.size > 0 and float(np.mean(z >= GROSS_SLIDING_Z)) >= SLIDING_BETWEEN_STOPS
+
+    def _stop_errors(self, params) -> np.ndarray:
+        """Each row's force error [N] from turns the reading cannot see: a body that
+        halts within a count (or within the reversal hysteresis) may turn there unseen,
+        and its friction then runs down the presliding curve through what the record
+        does not show. The difference between the model on the record's path and on one
+        that turns at the start of each stop (:meth:`_stop_runs`) and moves back through
+        the stop's span (at least half a count), with the rows after it, which
+        re-engage from the turn back at the stop's end; never more than the measured
+        force says such a turn changed (:meth:`_stop_bounds`)."""
+        if self.stop_rows(params) is None:
+            return np.zeros(self.x.size)
+        dither = np.zeros(self.x.size)
+        directions = self.d.copy()
+        for a, b in self.stops:
+            back = max(float(np.ptp(self.recorded_x[a:b])), 0.5 * self.quantum_x)
+            turned = -self.d[a]
+            dither[a:b] = turned * back * np.linspace(0.0, 1.0, b - a) \
+                - (self.x[a:b] - self.x[a])
+            directions[a:b] = turned
+        difference = np.abs(self.predict(params, dither, directions=directions)
+                            - self.predict(params))
+        return np.minimum(difference, self.stop_bounds)
 
     def acceleration_errors(self, params) -> np.ndarray | None:
         """Each row's force error [N] where a jumps, which no reading at the record's
