@@ -6,7 +6,6 @@ import weakref
 from dataclasses import replace
 
 import numpy as np
-from numba import njit
 from scipy.ndimage import uniform_filter1d
 
 from ...presliding import _presliding_kernel
@@ -16,6 +15,7 @@ from ..local_fits import WINDOWS, acceleration_at, smooth_fit
 from ..effects import engaged_presliding
 from ..kinematics import REVERSAL_STEPS, direction, position_noise, quantum
 from ..stickslip import find_stick_slip
+from ..stops import find_stops, stop_bounds, stop_mask
 from .base import Problem, Scales, _robust_scale
 
 #: Kinematics per dataset (a fit builds many problems on one record).
@@ -39,12 +39,6 @@ SHORT_SMOOTHING = 13
 HELD_SPEED_PERCENTILE = 10
 #: Samples averaged before the direction of a noisy x is read.
 NOISY_X_WINDOW = 21
-#: A stretch of the reading within one count boundary or the reversal hysteresis is a
-#: stop when it lasts, per count it shows, this many times as long as either run of
-#: one count beside it, and at least :data:`STOP_MIN_SAMPLES` samples: the body slowed
-#: far below the speed it came and left with, and may have halted and turned there.
-STOP_RATIO = 2.0
-STOP_MIN_SAMPLES = 4
 #: The share of the rows outside stops in gross sliding for a record to slide between
 #: its stops (:meth:`TimeseriesProblem._slides_between_stops`).
 SLIDING_BETWEEN_STOPS = 0.5
@@ -57,52 +51,6 @@ def with_weights(data, weights):
     if data in _KINEMATICS:
         _KINEMATICS[weighted] = _KINEMATICS[data]
     return weighted
-
-
-@njit(cache=True)
-def _stop_groups(values, lengths, span, quantum, ratio, min_samples):
-    """[first, stop) of the runs (``values`` of one count each, ``lengths`` samples)
-    that make a stop: grouped from the left while their values stay within ``span``,
-    a group is a stop where it lasts ``ratio`` times the longer run beside it per count
-    it shows, and at least ``min_samples`` (a loop: records hold millions of runs)."""
-    n = values.size
-    firsts = np.empty(n, dtype=np.int64)
-    stops = np.empty(n, dtype=np.int64)
-    found = 0
-    first = 0
-    low = high = values[0]
-    length = lengths[0]
-    for j in range(1, n + 1):
-        if j < n:
-            new_low, new_high = min(low, values[j]), max(high, values[j])
-            if new_high - new_low <= span:
-                low, high = new_low, new_high
-                length += lengths[j]
-                continue
-        before = lengths[first - 1] if first > 0 else 0
-        after = lengths[j] if j < n else 0
-        counts = np.floor((high - low) / quantum + 0.5) + 1.0
-        if (first > 0 or j < n) and length >= min_samples \
-                and length >= ratio * counts * max(before, after):
-            firsts[found] = first
-            stops[found] = j
-            found += 1
-        if j < n:
-            first = j
-            low = high = values[j]
-            length = lengths[j]
-    return firsts[:found], stops[:found]
-
-
-def _merged(intervals):
-    """Overlapping [start, stop) intervals joined, in order."""
-    out = []
-    for start, stop in sorted(intervals):
-        if out and start <= out[-1][1]:
-            out[-1] = (out[-1][0], max(out[-1][1], stop))
-        else:
-            out.append((start, stop))
-    return out
 
 
 class TimeseriesProblem(Problem):
@@ -155,10 +103,11 @@ class TimeseriesProblem(Problem):
         )
         #: the stretches where the body may have halted and turned unseen, and how far
         #: the measured force bounds what such a turn changed
-        self.stops = self._stop_runs() if self.quantum_x > 0 else []
+        stops = find_stops(self.recorded_x, self.blocks, self.quantum_x, self.hysteresis)
         self.d = self.kinematic_direction(self.x)
-        return {"quantum_x": self.quantum_x, "noise_x": self.noise_x, "stops": self.stops,
-                "stop_bounds": self._stop_bounds(),
+        return {"quantum_x": self.quantum_x, "noise_x": self.noise_x, "stops": stops,
+                "stop_mask": stop_mask(self.x.size, stops),
+                "stop_bounds": stop_bounds(self.measured, stops),
                 "resolution_x": self.resolution_x, "hysteresis": self.hysteresis, "x": self.x,
                 "derivatives": self.derivatives, "v": v,
                 "log_speed": log_speed, "a": a, "d": self.d,
@@ -345,62 +294,19 @@ class TimeseriesProblem(Problem):
         return np.hypot(reading, self._stop_errors(params))
 
     def stop_rows(self, params) -> np.ndarray | None:
-        """Rows within a stop (:meth:`_stop_runs`) where the body slides between its
-        stops under ``params`` (:meth:`_slides_between_stops`), or None."""
-        if not self.stops:
+        """Rows within a stop (:func:`..stops.find_stops`) where the body slides between
+        its stops under ``params`` (:meth:`_slides_between_stops`), or None."""
+        if self.stop_mask is None or not self._slides_between_stops(params):
             return None
-        mask = self._in_stops()
-        return mask if self._slides_between_stops(params, mask) else None
+        return self.stop_mask
 
-    def _in_stops(self) -> np.ndarray:
-        mask = np.zeros(self.x.size, dtype=bool)
-        for a, b in self.stops:
-            mask[a:b] = True
-        return mask
-
-    def _stop_runs(self):
-        """[start, stop) of each stop: a stretch whose reading stays within one count
-        boundary (a body at rest on it flickers between two counts) or within the
-        reversal hysteresis (turns inside it are not read as turns), and spends, per
-        count it shows, :data:`STOP_RATIO` times as long as the run of one count before
-        and after it, and at least :data:`STOP_MIN_SAMPLES` samples."""
-        stops = []
-        for a, b in self.blocks:
-            x = self.recorded_x[a:b]
-            edges = np.r_[0, np.flatnonzero(np.diff(x)) + 1, x.size]
-            values, lengths = x[edges[:-1]], np.diff(edges)
-            for span in (1.5 * self.quantum_x, self.hysteresis + 0.5 * self.quantum_x):
-                firsts, lasts = _stop_groups(values, lengths, span, self.quantum_x,
-                                             STOP_RATIO, STOP_MIN_SAMPLES)
-                stops.extend(zip((a + edges[firsts]).tolist(), (a + edges[lasts]).tolist()))
-        return _merged(stops)
-
-    def _stop_bounds(self) -> np.ndarray | None:
-        """How much friction a turn unseen in each stop can have changed, row by row
-        [N]: the measured force's excursion since the stop began, less three times the
-        force's noise. A body at rest barely accelerates, so the force on it is its
-        friction: a force that stays put while the reading does (a velocity loop
-        holding a rest) says that nothing turned. Held after the stop until the next
-        one, while the body re-engages."""
-        if not self.stops:
-            return None
-        F = self.measured
-        noise = 1.4826 * float(np.median(np.abs(np.diff(F)))) / np.sqrt(2.0)
-        bounds = np.zeros(F.size)
-        ends = [a for a, _ in self.stops[1:]] + [F.size]
-        for (a, b), following in zip(self.stops, ends):
-            excursion = np.abs(F[a:b] - F[a])
-            bounds[a:b] = np.maximum.accumulate(np.maximum(excursion - 3.0 * noise, 0.0))
-            bounds[b:following] = bounds[b - 1]
-        return bounds
-
-    def _slides_between_stops(self, params, in_stops) -> bool:
+    def _slides_between_stops(self, params) -> bool:
         """Whether the body slides where it is not stopped: at least
         :data:`SLIDING_BETWEEN_STOPS` of the other rows in gross sliding under
         ``params``. A presliding test never slides far past its presliding distance;
         every row of it is presliding, its stops are no less informative than the rest,
         and what the reading leaves open there is the re-reading's to say."""
-        z = self.presliding_fraction(params)[~in_stops]
+        z = self.presliding_fraction(params)[~self.stop_mask]
         return z.size > 0 and float(np.mean(z >= GROSS_SLIDING_Z)) >= SLIDING_BETWEEN_STOPS
 
     def _stop_errors(self, params) -> np.ndarray:
@@ -408,10 +314,10 @@ class TimeseriesProblem(Problem):
         halts within a count (or within the reversal hysteresis) may turn there unseen,
         and its friction then runs down the presliding curve through what the record
         does not show. The difference between the model on the record's path and on one
-        that turns at the start of each stop (:meth:`_stop_runs`) and moves back through
-        the stop's span (at least half a count), with the rows after it, which
+        that turns at the start of each stop (:func:`..stops.find_stops`) and moves back
+        through the stop's span (at least half a count), with the rows after it, which
         re-engage from the turn back at the stop's end; never more than the measured
-        force says such a turn changed (:meth:`_stop_bounds`)."""
+        force says such a turn changed (:func:`..stops.stop_bounds`)."""
         if self.stop_rows(params) is None:
             return np.zeros(self.x.size)
         dither = np.zeros(self.x.size)
