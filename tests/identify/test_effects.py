@@ -73,3 +73,24 @@ def test_a_short_record_that_mostly_moves_one_way_is_one_direction():
     pos, neg, total = problem_for(data).direction_counts()
     assert neg < 0.05 * total
     assert availability(problem_for(data))["asymmetry"].startswith("one-direction")
+
+
+def test_the_periodogram_is_scipys_lomb_scargle_and_finds_the_ripple():
+    from scipy.signal import lombscargle
+
+    from breakaway.identify.effects import periodogram
+
+    # a residual periodic in x with a wavelength of 3 mm, at irregular places over 30 mm
+    rng = np.random.default_rng(5)
+    x = rng.uniform(0.0, 0.03, 3000)
+    r = 0.5 * np.sin(2 * np.pi * x / 3e-3 + 0.4) + rng.standard_normal(x.size)
+    wavelengths = np.geomspace(2e-4, 1e-2, 400)
+    power = periodogram(x, r, wavelengths)
+    expected = lombscargle(x, r - r.mean(), 2 * np.pi / wavelengths)
+    np.testing.assert_allclose(power, expected, rtol=1e-9, atol=1e-12 * expected.max())
+    assert wavelengths[np.argmax(power)] == pytest.approx(3e-3, rel=0.02)
+    # a long record is thinned to about 4,000 rows, as scipy's would be given them
+    long_x, long_r = np.repeat(x, 5), np.repeat(r, 5)
+    thinned = lombscargle(long_x[::3], long_r[::3] - long_r.mean(), 2 * np.pi / wavelengths)
+    np.testing.assert_allclose(periodogram(long_x, long_r, wavelengths), thinned, rtol=1e-9,
+                               atol=1e-12 * thinned.max())
