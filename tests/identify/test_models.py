@@ -183,3 +183,33 @@ def test_a_presliding_test_has_no_stops_in_force():
     assert fit.problem.stops
     assert fit.problem.stop_rows(fit.params) is None
     assert not np.any(fit.problem._stop_errors(fit.params))
+
+
+def test_a_force_held_late_in_a_warming_record_bounds_the_start_levels():
+    # friction that grows 0.5 %/s: a force held late in the record is the start's Fs
+    # grown with it, and bounds the start's Fs only once the growth is taken off
+    effects = ("viscous", "asymmetry", "drift")
+    data, truth = make_dataset("timeseries", effects, seed=7, n=10_000)
+    held = Problem(data, effects).held_force(truth)
+    assert held[0] <= 1.01 * truth["Fs"] and held[1] <= 1.01 * truth["Fs_neg"]
+    # read without the drift, the same record holds more than the start's levels
+    steady = {k: v for k, v in truth.items() if k != "alpha"}
+    unscaled = Problem(data, effects[:2]).held_force(steady)
+    assert unscaled[0] > 1.02 * truth["Fs"] and unscaled[1] > 1.02 * truth["Fs_neg"]
+
+
+def test_strokes_between_two_ends_break_away_apart_and_random_turns_do_not():
+    # end to end: each direction breaks away at its own end of the travel
+    t = np.arange(8000) / 1000.0
+    x = 0.01 * (1 - np.cos(2 * np.pi * t / 2.0)) / 2
+    ends = Problem(cases.dataset("timeseries", {"t": t, "x": x, "F": np.zeros(t.size)}))
+    positive, negative = ends.breakaway_places(BASE_TRUTH["timeseries"])
+    assert positive.size == 3 and negative.size == 4
+    assert np.all(positive < 1e-4) and np.all(negative > 0.0099)
+    assert ends.breakaways_apart(BASE_TRUTH["timeseries"])
+    # half-cosine strokes between random turning points: the places mingle
+    data, truth = make_dataset("timeseries", ("asymmetry",), seed=7)
+    random = Problem(data, ("asymmetry",))
+    positive, negative = random.breakaway_places(truth)
+    assert positive.size > 5 and negative.size > 5
+    assert not random.breakaways_apart(truth)

@@ -85,6 +85,47 @@ EXCLUSIVE = {"viscous": "viscous-power", "viscous-power": "viscous",
              "offset": "asymmetry", "asymmetry": "offset"}
 #: ``viscous-power`` is named only when n is this many standard errors from 1.
 POWER_SIGMAS = 3.0
+#: What an effect shows beyond a simpler one nested in it (§7): an offset is an
+#: asymmetry whose two directions' levels differ by one shift, the Stribeck levels as the
+#: Coulomb ones (up to the virgin branch). Its separate Coulomb levels are what the
+#: offset's shift gives too; its own content is that the two directions' Stribeck drops
+#: differ: the levels (Fs, Fs_neg) that say what each drop is.
+NESTED = {("asymmetry", "offset"): (("Fs", "Fc"), ("Fs_neg", "Fc_neg"))}
+
+
+def beyond_nested(richer: str, simpler: str, fit, beyond=()) -> str | None:
+    """Why ``fit`` (with the effect ``richer``) shows nothing beyond the simpler effect
+    nested in it (None: it does, or the two are not nested).
+
+    Each direction's drop must be what the data show: its Stribeck level determined, or
+    on its Coulomb level's bound (no drop that way), and in neither case among
+    ``beyond`` (the names :func:`~.warnings.beyond_data.beyond_data` gives, such as a
+    Stribeck level below a force the data hold without sliding: the drop is then at
+    least that large, not what the fit says). A drop the data do not resolve is no drop
+    (§7b, 5), and two absent drops are the offset's own. Drops that differ only between
+    break-aways at separate places
+    (:meth:`~.models.timeseries.TimeseriesProblem.breakaways_apart`) may differ by
+    place, not direction."""
+    levels = NESTED.get((richer, simpler))
+    if levels is None:
+        return None
+    bound = getattr(getattr(fit, "assessment", None), "bound", {})
+    absent = 0
+    for level, low in levels:
+        if level not in fit.params:
+            return f"it has no {level}, so it says nothing that {simpler} does not"
+        no_drop = bound.get(level) == "lower" or fit.params[level] <= fit.params[low]
+        absent += no_drop
+        if level in beyond or not (no_drop or fit.determined.get(level, False)):
+            return (f"its {level} = {fit.params[level]:.4g} is not what the data "
+                    f"determine, so it says nothing that {simpler} does not")
+    if absent == len(levels):
+        return f"it has no Stribeck drop either way, so it says nothing that {simpler} does not"
+    if fit.problem.breakaways_apart(fit.params):
+        return (f"its drops differ only where the two directions break away, at separate "
+                f"places (the ends of the travel), where a stiction that depends on "
+                f"position predicts the same, so it says nothing that {simpler} does not")
+    return None
 
 
 def _likelihood_distance(power, viscous) -> float:
@@ -161,5 +202,5 @@ def power_is_preferred(power, viscous, heldout_power: float,
                   f"errors, and the BIC and the held-out error prefer the curve")
 
 
-__all__ = ["EXCLUSIVE", "POWER_SIGMAS", "close_rivals", "like_a_dependence", "power_is_preferred",
-           "viscous_or_detection"]
+__all__ = ["EXCLUSIVE", "NESTED", "POWER_SIGMAS", "beyond_nested", "close_rivals",
+           "like_a_dependence", "power_is_preferred", "viscous_or_detection"]

@@ -129,6 +129,7 @@ class Judge:
         beyond = beyond_data(trial, self.noise)
         unshown = [e for e in new if not any(
             _sized(trial, k) and k not in beyond and _apart(trial, k, EFFECTS[e].differs_from.get(k))
+            and not _placed(trial, k, EFFECTS[e].differs_from.get(k))
             for k in EFFECTS[e].size_keys)]
         if unshown:
             keys = EFFECTS[unshown[0]].size_keys
@@ -323,6 +324,20 @@ def _apart(fit: FitResult, key: str, base: str | None) -> bool:
     return se is None or gap > DIFFERENCE_SIGMAS * se
 
 
+#: The Stribeck levels: the peak friction each direction shows where it breaks away.
+STRIBECK_LEVELS = ("Fs", "Fs_neg")
+
+
+def _placed(fit: FitResult, key: str, base: str | None) -> bool:
+    """Whether ``key``'s difference from ``base`` is one of place as much as of
+    direction: two Stribeck levels, where each direction breaks away only at places
+    the other never does
+    (:meth:`~.models.timeseries.TimeseriesProblem.breakaways_apart`: a seal drawn end
+    to end, whose squeeze differs at the two ends)."""
+    return base is not None and key in STRIBECK_LEVELS and base in STRIBECK_LEVELS \
+        and fit.problem.breakaways_apart(fit.params)
+
+
 #: How a parameter came out not determined, in words.
 _WHY = {"at-bound": "on a bound of its range", "flat": "along a flat direction of the fit",
         "relative": "a standard error larger than its value",
@@ -342,6 +357,11 @@ def _why(fit: FitResult, keys, beyond, differs=None) -> str:
             reasons.append(f"{key} − {base} = {gap:.3g} {unit} ± "
                            f"{difference_stderr(fit, key, base):.2g} {unit}, within "
                            f"{DIFFERENCE_SIGMAS:g} standard errors of 0")
+            continue
+        if _sized(fit, key) and _placed(fit, key, base):
+            reasons.append(f"{key} and {base} are shown only where the two directions "
+                           f"break away, at separate places (the ends of the travel), so "
+                           f"their difference may be one of position")
             continue
         why = fit.assessment.why.get(key) or ""
         text = (f"tied to {why.split(':', 1)[1]}" if why.startswith("correlated:")

@@ -19,6 +19,8 @@ from .effects import EFFECTS
 from .fitting import FitResult, best_base_starts, family, fit_model, fit_with_effect, refit
 from .indistinguishable import (
     EXCLUSIVE,
+    NESTED,
+    beyond_nested,
     close_rivals,
     like_a_dependence,
     power_is_preferred,
@@ -30,6 +32,7 @@ from .models import with_weights
 from .residuals import is_white
 from .stability import unstable
 from .verdicts import Candidate, Step
+from .warnings.beyond_data import beyond_data
 
 #: Evaluations per parameter of a candidate's screening fit.
 SCREEN_EVALUATIONS = 15
@@ -199,18 +202,28 @@ class Selection(NestedCurves):
 
     def _parsimonious(self, ranked, trials) -> list[str]:
         """``ranked`` with the candidate to offer first: the first, unless one with
-        fewer parameters passed too and the first does not pass the judgement against
-        it (an asymmetry's second Stribeck level must earn its place beside an offset
-        as any effect does beside the model: a lower BIC counted over every row, when
-        the rows move together, is not that)."""
+        fewer parameters passed too and the first shows nothing beyond it
+        (:func:`~.indistinguishable.beyond_nested`: an asymmetry whose second Stribeck
+        level the data do not determine) or does not pass the judgement against it (an
+        asymmetry's second Stribeck level must earn its place beside an offset as any
+        effect does beside the model: a lower BIC counted over every row, when the rows
+        move together, is not that)."""
         if len(ranked) < 2:
             return ranked
         chosen = ranked[0]
         for other in ranked[1:]:
-            if len(EFFECTS[other].keys) < len(EFFECTS[chosen].keys) and \
-                    self.judgement.judge(trials[other], trials[chosen]).reason:
+            if len(EFFECTS[other].keys) < len(EFFECTS[chosen].keys) and (
+                    self._beyond_nested(chosen, other, trials[chosen]) or
+                    self.judgement.judge(trials[other], trials[chosen]).reason):
                 chosen = other
         return [chosen] + [e for e in ranked if e != chosen]
+
+    def _beyond_nested(self, richer, simpler, trial) -> str | None:
+        """:func:`~.indistinguishable.beyond_nested`, with the parameters beyond what
+        the data show as the report finds them."""
+        if (richer, simpler) not in NESTED:
+            return None
+        return beyond_nested(richer, simpler, trial, beyond_data(trial, self.noise))
 
     def _settle_indistinguishable(self, passing, trials):
         # the pair predicts the same data: where one of them passes, the other's fit is
@@ -321,8 +334,9 @@ class Selection(NestedCurves):
                     continue
                 # a rival with more parameters must earn them against the model it
                 # would replace, as in :meth:`_parsimonious`
-                if len(EFFECTS[candidate].keys) > len(EFFECTS[effect].keys) and \
-                        self.judgement.judge(current, trial).reason:
+                if len(EFFECTS[candidate].keys) > len(EFFECTS[effect].keys) and (
+                        self._beyond_nested(candidate, effect, trial) or
+                        self.judgement.judge(current, trial).reason):
                     continue
                 if candidate == "viscous-power" and effect == "viscous" and not \
                         power_is_preferred(trial, current, heldout, current_heldout)[0]:

@@ -113,6 +113,13 @@ class Problem:
         p.update(self.fixed)
         return {name: p[name] for name in self.all_names}
 
+    def breakaways_apart(self, params) -> bool:
+        """Whether the two directions break away only at separate places (a time series
+        turning at the ends of its travel): a difference of their Stribeck levels is
+        then one of place as much as of direction. False for curves and break-away
+        series, whose levels are each direction's own."""
+        return False
+
     def stop_rows(self, params) -> np.ndarray | None:
         """Rows where the body may have halted and turned unseen under ``params`` (a
         time series on an encoder); None where there are none."""

@@ -248,11 +248,35 @@ class TimeseriesProblem(Problem):
         return int(np.count_nonzero(sliding & (self.d > 0))), \
             int(np.count_nonzero(sliding & (self.d < 0)))
 
+    def breakaway_places(self, params) -> tuple[np.ndarray, np.ndarray]:
+        """x [m] at each reversal that starts a stroke reaching gross sliding under
+        ``params``, for the strokes moving positive and those moving negative: where
+        each direction breaks away."""
+        last, reversed_ = self._last_reversal()
+        sliding = reversed_ & (self.presliding_fraction(params) >= GROSS_SLIDING_Z)
+        starts, rows = np.unique(last[sliding], return_index=True)
+        ways = self.d[np.flatnonzero(sliding)[rows]]
+        return self.x[starts[ways > 0]], self.x[starts[ways < 0]]
+
+    def breakaways_apart(self, params) -> bool:
+        """Whether no break-away of either direction lies within the span of the other
+        direction's (:meth:`breakaway_places`): a rig that turns only at the two ends
+        of its travel breaks away one way at one end and the other way at the other, and
+        a stiction that depends on position predicts the same as one that depends on
+        direction."""
+        positive, negative = self.breakaway_places(params)
+        if positive.size == 0 or negative.size == 0:
+            return True
+        within = np.count_nonzero((positive >= negative.min()) & (positive <= negative.max())) \
+            + np.count_nonzero((negative >= positive.min()) & (negative <= positive.max()))
+        return within == 0
+
     def held_force(self, params):
         """The largest friction measured each way (the force less what the sensor adds:
         an inertial m·a is no friction held) where the body is held: the fitted
         presliding has not reached the steady curve (z < 1), and the body moves slower
-        than nearly all of its gross sliding (a break-away under way is not held)."""
+        than nearly all of its gross sliding (a break-away under way is not held). In
+        the levels at the record's start, where an effect scales g (a drift)."""
         z = self.presliding_fraction(params)
         held = z < 1.0
         sliding = np.abs(self.v[z >= GROSS_SLIDING_Z])
@@ -261,7 +285,12 @@ class TimeseriesProblem(Problem):
         if not held.any():
             return None
         added = self.predict(params) - self.predict(params, sensor=False)
-        friction = (self.measured - added)[held]
+        # a force held late in a record whose friction grows (a drift) bounds the
+        # start's levels by what it was then: each row's friction over its scale
+        scale = np.ones(self.x.size)
+        for effect in self.effect_objects:
+            scale = effect.scale_g(self, params, scale)
+        friction = ((self.measured - added) / scale)[held]
         return max(float(np.max(friction)), 0.0), max(float(-np.min(friction)), 0.0)
 
     def resolution_noise(self, params, seed=0) -> float:
