@@ -198,7 +198,7 @@ def test_a_force_held_late_in_a_warming_record_bounds_the_start_levels():
     assert unscaled[0] > 1.02 * truth["Fs"] and unscaled[1] > 1.02 * truth["Fs_neg"]
 
 
-def test_strokes_between_two_ends_break_away_apart_and_random_turns_do_not():
+def test_strokes_between_two_ends_break_away_apart_and_spread_turns_do_not():
     # end to end: each direction breaks away at its own end of the travel
     t = np.arange(8000) / 1000.0
     x = 0.01 * (1 - np.cos(2 * np.pi * t / 2.0)) / 2
@@ -207,6 +207,14 @@ def test_strokes_between_two_ends_break_away_apart_and_random_turns_do_not():
     assert positive.size == 3 and negative.size == 4
     assert np.all(positive < 1e-4) and np.all(negative > 0.0099)
     assert ends.breakaways_apart(BASE_TRUTH["timeseries"])
+    # turning points apart each way but spread along the travel: a stiction that
+    # depends on position would vary within each direction's break-aways
+    turns = np.array([0.0, -5.0, -1.0, -4.0, 0.0, -3.0, -0.5, -5.0]) * 1e-3
+    spread = np.interp(t, np.linspace(0.0, t[-1], turns.size), turns)
+    apart = Problem(cases.dataset("timeseries", {"t": t, "x": spread, "F": np.zeros(t.size)}))
+    positive, negative = apart.breakaway_places(BASE_TRUTH["timeseries"])
+    assert positive.max() < negative.min()
+    assert not apart.breakaways_apart(BASE_TRUTH["timeseries"])
     # half-cosine strokes between random turning points: the places mingle
     data, truth = make_dataset("timeseries", ("asymmetry",), seed=7)
     random = Problem(data, ("asymmetry",))

@@ -401,7 +401,7 @@ def test_an_asymmetry_whose_drops_the_data_do_not_show_says_nothing_beyond_an_of
 
     assert beyond_nested("asymmetry", "offset", asymmetry(0.90, 1.33)) is None
     # drops seen only where each direction breaks away, at its own end of the travel
-    assert "at separate places" in beyond_nested("asymmetry", "offset",
+    assert "at one place of its own" in beyond_nested("asymmetry", "offset",
                                                  asymmetry(0.90, 1.33, apart=True))
     # no drop one way and a drop the other: the drops differ, which no offset gives
     assert beyond_nested("asymmetry", "offset",

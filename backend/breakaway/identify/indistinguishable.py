@@ -102,8 +102,8 @@ def beyond_nested(richer: str, simpler: str, fit, beyond=()) -> str | None:
     ``beyond`` (the names :func:`~.warnings.beyond_data.beyond_data` gives, such as a
     Stribeck level below a force the data hold without sliding: the drop is then at
     least that large, not what the fit says). A drop the data do not resolve is no drop
-    (§7b, 5), and two absent drops are the offset's own. Drops that differ only between
-    break-aways at separate places
+    (§7b, 5), and two absent drops are the offset's own. Drops that differ where each
+    direction breaks away at one place of its own
     (:meth:`~.models.timeseries.TimeseriesProblem.breakaways_apart`) may differ by
     place, not direction."""
     levels = NESTED.get((richer, simpler))
@@ -122,9 +122,9 @@ def beyond_nested(richer: str, simpler: str, fit, beyond=()) -> str | None:
     if absent == len(levels):
         return f"it has no Stribeck drop either way, so it says nothing that {simpler} does not"
     if fit.problem.breakaways_apart(fit.params):
-        return (f"its drops differ only where the two directions break away, at separate "
-                f"places (the ends of the travel), where a stiction that depends on "
-                f"position predicts the same, so it says nothing that {simpler} does not")
+        return (f"its drops differ where each direction breaks away at one place of its "
+                f"own (the ends of the travel), where a stiction that depends on position "
+                f"predicts the same, so it says nothing that {simpler} does not")
     return None
 
 

@@ -330,8 +330,8 @@ STRIBECK_LEVELS = ("Fs", "Fs_neg")
 
 def _placed(fit: FitResult, key: str, base: str | None) -> bool:
     """Whether ``key``'s difference from ``base`` is one of place as much as of
-    direction: two Stribeck levels, where each direction breaks away only at places
-    the other never does
+    direction: two Stribeck levels, where each direction breaks away at one place of
+    its own
     (:meth:`~.models.timeseries.TimeseriesProblem.breakaways_apart`: a seal drawn end
     to end, whose squeeze differs at the two ends)."""
     return base is not None and key in STRIBECK_LEVELS and base in STRIBECK_LEVELS \
@@ -360,8 +360,8 @@ def _why(fit: FitResult, keys, beyond, differs=None) -> str:
             continue
         if _sized(fit, key) and _placed(fit, key, base):
             reasons.append(f"{key} and {base} are shown only where the two directions "
-                           f"break away, at separate places (the ends of the travel), so "
-                           f"their difference may be one of position")
+                           f"break away, each at one place of its own (the ends of the "
+                           f"travel), so their difference may be one of position")
             continue
         why = fit.assessment.why.get(key) or ""
         text = (f"tied to {why.split(':', 1)[1]}" if why.startswith("correlated:")

@@ -28,6 +28,9 @@ GROSS_SLIDING_Z = 1.25
 #: presliding distance past the point where presliding ends (z = 2): a fit whose (E6')
 #: saturates a little before the ends of closed presliding loops has not seen sliding.
 SHOWN_SLIDING_Z = 2.0
+#: Each direction breaks away at one place when its break-aways lie within this share
+#: of the distance between the two directions' (:meth:`TimeseriesProblem.breakaways_apart`).
+ONE_PLACE_SHARE = 0.25
 #: Readings of the smoothed record that estimate what the resolution of x does.
 RESOLUTION_DRAWS = 4
 #: The jitter of an encoder's reading at a count boundary, in counts (its electronics).
@@ -259,17 +262,19 @@ class TimeseriesProblem(Problem):
         return self.x[starts[ways > 0]], self.x[starts[ways < 0]]
 
     def breakaways_apart(self, params) -> bool:
-        """Whether no break-away of either direction lies within the span of the other
-        direction's (:meth:`breakaway_places`): a rig that turns only at the two ends
-        of its travel breaks away one way at one end and the other way at the other, and
-        a stiction that depends on position predicts the same as one that depends on
-        direction."""
+        """Whether each direction breaks away at one place of its own
+        (:meth:`breakaway_places`): all its break-aways within
+        :data:`ONE_PLACE_SHARE` of the distance between the two directions' median
+        places. A rig that turns only at the two ends of its travel breaks away one way
+        at one end and the other way at the other, and a stiction that depends on
+        position predicts the same as one that depends on direction; break-aways spread
+        along the travel each way would show such a dependence within a direction."""
         positive, negative = self.breakaway_places(params)
         if positive.size == 0 or negative.size == 0:
             return True
-        within = np.count_nonzero((positive >= negative.min()) & (positive <= negative.max())) \
-            + np.count_nonzero((negative >= positive.min()) & (negative <= positive.max()))
-        return within == 0
+        distance = abs(float(np.median(positive)) - float(np.median(negative)))
+        return max(float(np.ptp(positive)), float(np.ptp(negative))) \
+            < ONE_PLACE_SHARE * distance
 
     def held_force(self, params):
         """The largest friction measured each way (the force less what the sensor adds:
