@@ -59,6 +59,8 @@ class Selection(NestedCurves):
         self.settled: set[str] = set()  # named away by the rule for indistinguishable pairs
         #: effects that came within MIN_BIC_DROP of an accepted one in its round
         self.rivals: set[str] = set()
+        #: simpler effects chosen over the richer ones nested in them ({simpler: richer})
+        self.nested_choices: dict[str, str] = {}
         self.heldout_base = None
         #: per candidate, the dependence that would predict it as well (its verdict's twin)
         self.twins: dict[str, tuple | None] = {}
@@ -116,6 +118,8 @@ class Selection(NestedCurves):
                 self.report(min(0.9, 0.1 + 0.8 * len(self.steps) / total), f"accepted {effect}")
             current, current_heldout = chosen[-1][1], chosen[-1][2]
             current, current_heldout = self._reweigh(current, current_heldout)
+            current, current_heldout = self._revisit_nested(current, current_heldout,
+                                                            available)
             remaining = [e for e in remaining if e not in self.settled]
         if self.white(current):
             for effect in remaining:
@@ -203,20 +207,35 @@ class Selection(NestedCurves):
     def _parsimonious(self, ranked, trials) -> list[str]:
         """``ranked`` with the candidate to offer first: the first, unless one with
         fewer parameters passed too and the first shows nothing beyond it
-        (:func:`~.indistinguishable.beyond_nested`: an asymmetry whose second Stribeck
-        level the data do not determine) or does not pass the judgement against it (an
-        asymmetry's second Stribeck level must earn its place beside an offset as any
-        effect does beside the model: a lower BIC counted over every row, when the rows
-        move together, is not that)."""
+        (:func:`~.indistinguishable.beyond_nested`: an asymmetry whose two directions'
+        drops differ in nothing the data show) or does not pass the judgement against
+        it (an asymmetry's second Stribeck level must earn its place beside an offset as
+        any effect does beside the model: a lower BIC counted over every row, when the
+        rows move together, is not that)."""
         if len(ranked) < 2:
             return ranked
         chosen = ranked[0]
         for other in ranked[1:]:
-            if len(EFFECTS[other].keys) < len(EFFECTS[chosen].keys) and (
-                    self._beyond_nested(chosen, other, trials[chosen]) or
-                    self.judgement.judge(trials[other], trials[chosen]).reason):
-                chosen = other
+            if len(EFFECTS[other].keys) < len(EFFECTS[chosen].keys):
+                if self._beyond_nested(chosen, other, trials[chosen]):
+                    self.nested_choices[other] = chosen
+                    chosen = other
+                elif self.judgement.judge(trials[other], trials[chosen]).reason:
+                    chosen = other
         return [chosen] + [e for e in ranked if e != chosen]
+
+    def _revisit_nested(self, current, current_heldout, available):
+        """An effect chosen over the richer one nested in it because that one showed
+        nothing beyond it (:meth:`_parsimonious`: an offset over an asymmetry whose drops
+        a fit without the viscous rise did not yet resolve) is judged again, by the
+        swap's standard, each time the model beside it has grown. The swap after the
+        forward rounds would come to the same, after a round of every other candidate
+        beside a model that lacks the richer effect's part."""
+        pending = {simpler: richer for simpler, richer in self.nested_choices.items()
+                   if simpler in current.effects and len(current.effects) > 1}
+        if not pending:
+            return current, current_heldout
+        return self.swap(current, current_heldout, available, only=pending)
 
     def _beyond_nested(self, richer, simpler, trial) -> str | None:
         """:func:`~.indistinguishable.beyond_nested`, with the parameters beyond what
@@ -307,14 +326,17 @@ class Selection(NestedCurves):
                     break
         return current, current_heldout
 
-    def swap(self, current, current_heldout, available):
+    def swap(self, current, current_heldout, available, only=None):
         """Swap an accepted effect for a rival (a candidate that came close to an
         accepted one in its round) when the swap explains the data better: a forward
-        step can take a stand-in for the true effect."""
+        step can take a stand-in for the true effect. ``only``: the one rival to try for
+        each of some accepted effects ({accepted: rival}), in place of every pair."""
         rejected = [e for e in available if e not in current.effects and e in self.rivals
                     and e not in self.settled]
         for effect in list(current.effects):
-            for candidate in rejected:
+            if only is not None and effect not in only:
+                continue
+            for candidate in rejected if only is None else [only[effect]]:
                 others = tuple(e for e in current.effects if e != effect)
                 if EXCLUSIVE.get(candidate) in others:
                     continue
@@ -346,7 +368,9 @@ class Selection(NestedCurves):
                                                   f"the data better")
                 self.steps.append(Step(candidate, trial, self._evidence(
                     candidate, reduced, trial, f"; it replaces {effect}"), heldout))
-                return self.swap(trial, heldout, available)
+                self.nested_choices.pop(effect, None)
+                return (trial, heldout) if only is not None else \
+                    self.swap(trial, heldout, available)
         return current, current_heldout
 
 
