@@ -16,6 +16,7 @@ from ..effects import engaged_presliding
 from ..kinematics import REVERSAL_STEPS, direction, position_noise, quantum
 from ..stickslip import find_stick_slip
 from ..stops import find_stops, stop_bounds, stop_mask
+from ..strokes import breakaway_places, breakaways_apart, last_reversal
 from .base import Problem, Scales, _robust_scale
 
 #: Kinematics per dataset (a fit builds many problems on one record).
@@ -28,9 +29,6 @@ GROSS_SLIDING_Z = 1.25
 #: presliding distance past the point where presliding ends (z = 2): a fit whose (E6')
 #: saturates a little before the ends of closed presliding loops has not seen sliding.
 SHOWN_SLIDING_Z = 2.0
-#: Each direction breaks away at one place when its break-aways lie within this share
-#: of the distance between the two directions' (:meth:`TimeseriesProblem.breakaways_apart`).
-ONE_PLACE_SHARE = 0.25
 #: Readings of the smoothed record that estimate what the resolution of x does.
 RESOLUTION_DRAWS = 4
 #: The jitter of an encoder's reading at a count boundary, in counts (its electronics).
@@ -215,11 +213,7 @@ class TimeseriesProblem(Problem):
 
     def _last_reversal(self):
         """Index of the sample before each row's last reversal (0 before the first)."""
-        change = np.flatnonzero(np.diff(self.d) != 0) + 1
-        start = np.zeros(self.x.size, dtype=int)
-        start[change] = change
-        start = np.maximum.accumulate(start)
-        return np.maximum(start - 1, 0), start > 0
+        return last_reversal(self.d)
 
     @property
     def stick_slip(self):
@@ -252,29 +246,15 @@ class TimeseriesProblem(Problem):
             int(np.count_nonzero(sliding & (self.d < 0)))
 
     def breakaway_places(self, params) -> tuple[np.ndarray, np.ndarray]:
-        """x [m] at each reversal that starts a stroke reaching gross sliding under
-        ``params``, for the strokes moving positive and those moving negative: where
-        each direction breaks away."""
-        last, reversed_ = self._last_reversal()
-        sliding = reversed_ & (self.presliding_fraction(params) >= GROSS_SLIDING_Z)
-        starts, rows = np.unique(last[sliding], return_index=True)
-        ways = self.d[np.flatnonzero(sliding)[rows]]
-        return self.x[starts[ways > 0]], self.x[starts[ways < 0]]
+        """x [m] where each direction breaks away under ``params``
+        (:func:`..strokes.breakaway_places`)."""
+        return breakaway_places(self.x, self.d, self.presliding_fraction(params),
+                                GROSS_SLIDING_Z)
 
     def breakaways_apart(self, params) -> bool:
-        """Whether each direction breaks away at one place of its own
-        (:meth:`breakaway_places`): all its break-aways within
-        :data:`ONE_PLACE_SHARE` of the distance between the two directions' median
-        places. A rig that turns only at the two ends of its travel breaks away one way
-        at one end and the other way at the other, and a stiction that depends on
-        position predicts the same as one that depends on direction; break-aways spread
-        along the travel each way would show such a dependence within a direction."""
-        positive, negative = self.breakaway_places(params)
-        if positive.size == 0 or negative.size == 0:
-            return True
-        distance = abs(float(np.median(positive)) - float(np.median(negative)))
-        return max(float(np.ptp(positive)), float(np.ptp(negative))) \
-            < ONE_PLACE_SHARE * distance
+        """Whether each direction breaks away at one place of its own under ``params``
+        (:func:`..strokes.breakaways_apart`)."""
+        return breakaways_apart(*self.breakaway_places(params))
 
     def held_force(self, params):
         """The largest friction measured each way (the force less what the sensor adds:
