@@ -8,8 +8,10 @@ import numpy as np
 import pytest
 
 from breakaway.identify import diagnose, report
+from breakaway.identify.fitting import fit_model
 from breakaway.identify.models import problem_for
-from breakaway.identify.residuals import lag_one_correlation
+from breakaway.identify.residuals import lag_one_correlation, residual_structure
+from breakaway.identify.warnings.floor_low import CHANCE_STDS, floor_low_warnings
 from breakaway.identify.synthetic import NOISE, make_dataset, with_force
 
 N = 10_000
@@ -58,3 +60,22 @@ def test_a_fast_vibration_outside_the_library_stays_unexplained():
     result = report(diagnose(with_force(data, force)))
     assert result["unexplained"] is True
     assert "floor-low" not in [w["code"] for w in result["warnings"]]
+
+
+@pytest.mark.parametrize("seed", [0, 3])
+def test_a_short_steady_curve_correlating_by_chance_is_noise_like(seed):
+    # 40 set-points of white noise: successive residuals correlate by up to ±0.32 (two
+    # standard errors, 2/√39) by chance, so a floor reading low says so; a bend the
+    # model lacks, on the same rows, still counts as structure
+    data, truth = make_dataset("steady", (), seed=seed, n=40)
+    fit = fit_model(data, (), starts=[truth])
+    residual = fit.residual()
+    assert 0.1 < abs(lag_one_correlation(residual, fit.problem)) < CHANCE_STDS / np.sqrt(39)
+    structure = residual_structure(residual, fit.problem, white=False)
+    codes = [w["code"] for w in floor_low_warnings(fit, fit.rmse / 1.5, structure)]
+    assert codes == ["floor-low"]
+    v = data.columns["v"]
+    bent = with_force(data, data.columns["F"] + 3 * fit.rmse * np.sin(np.log(np.abs(v))))
+    bent_fit = fit_model(bent, (), starts=[truth])
+    structure = residual_structure(bent_fit.residual(), bent_fit.problem, white=False)
+    assert floor_low_warnings(bent_fit, bent_fit.rmse / 1.5, structure) == []

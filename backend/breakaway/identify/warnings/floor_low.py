@@ -17,8 +17,11 @@ from . import warning
 UNEXPLAINED_RATIO = 1.3
 #: ... unless the residual is noise-like: successive residuals correlate less than this,
 #: and no variable explains more than :data:`NOISE_LIKE_SHARE` of it (noise whose
-#: spread changes: the floor, a median of differences, reads below its RMS).
+#: spread changes: the floor, a median of differences, reads below its RMS) ...
 NOISE_LIKE_CORRELATION = 0.1
+#: ... or less than this many times the correlation's standard error for white noise,
+#: 1/√pairs, where that is larger: 42 rows of a steady curve correlate ±0.15 by chance.
+CHANCE_STDS = 2.0
 NOISE_LIKE_SHARE = 0.05
 #: Noise is uneven when its RMS in one bin of the rows by some variable (up to ten, of
 #: 50 rows or more) is this many times that in another.
@@ -27,14 +30,17 @@ UNEVEN_SPREAD = 1.5
 
 def floor_low_warnings(fit: FitResult, floor: float, structure: list[dict]) -> list[dict]:
     """``floor-low`` when the residual exceeds the floor as far as structure would
-    (:data:`UNEXPLAINED_RATIO`) but is noise-like (:data:`NOISE_LIKE_CORRELATION`): the
-    floor reads low, nothing is missing."""
+    (:data:`UNEXPLAINED_RATIO`) but is noise-like (:data:`NOISE_LIKE_CORRELATION`, or
+    within chance on few rows, :data:`CHANCE_STDS`): the floor reads low, nothing is
+    missing."""
     if not fit.rmse > UNEXPLAINED_RATIO * floor:
         return []
     residual = fit.residual()
     correlation = lag_one_correlation(residual, fit.problem)
+    chance = CHANCE_STDS / math.sqrt(max(residual.size - 1, 1))
     strongest = max((item["strength"] for item in structure), default=0.0)
-    if abs(correlation) >= NOISE_LIKE_CORRELATION or strongest >= NOISE_LIKE_SHARE:
+    if abs(correlation) >= max(NOISE_LIKE_CORRELATION, chance) \
+            or strongest >= NOISE_LIKE_SHARE:
         return []
     along, ratio = max(((name, spread_ratio(residual, values))
                         for name, values in fit.problem.variables().items()),
@@ -60,4 +66,4 @@ def spread_ratio(residual, values) -> float:
     return max(rms) / min(rms) if min(rms) > 0 else math.inf
 
 
-__all__ = ["UNEXPLAINED_RATIO", "floor_low_warnings", "spread_ratio"]
+__all__ = ["CHANCE_STDS", "UNEXPLAINED_RATIO", "floor_low_warnings", "spread_ratio"]
