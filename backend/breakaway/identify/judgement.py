@@ -44,6 +44,7 @@ import numpy as np
 from . import allowance
 from .effects import EFFECTS
 from .fitting import FitResult, smooth_order
+from .drop import unresolved_drop, without_drop
 from .heldout import HeldOut, heldout_blocks, heldout_error
 from .identifiability import correlation_time
 from .input_error import input_weights
@@ -105,6 +106,17 @@ class Judge:
             self._heldout[id(fit)] = (fit, heldout_error(fit, self.blocks(fit)))
         return self._heldout[id(fit)][1]
 
+    @staticmethod
+    def _unshown(trial: FitResult, new, beyond) -> list[str]:
+        """The effects of ``new`` none of whose sizes ``trial`` shows: determined, within
+        the data, apart from the base parameter it differs from and not only where the
+        directions break away apart."""
+        return [e for e in new if not any(
+            _sized(trial, k) and k not in beyond
+            and _apart(trial, k, EFFECTS[e].differs_from.get(k))
+            and not _placed(trial, k, EFFECTS[e].differs_from.get(k))
+            for k in EFFECTS[e].size_keys)]
+
     def judge(self, current: FitResult, trial: FitResult, heldout: bool = True) -> Verdict:
         """The verdict on ``trial`` (``current`` with one or two effects added); with
         ``heldout=False`` only the parts that need no refit (a screening)."""
@@ -127,10 +139,15 @@ class Judge:
             trial, keys, allowance.basis(trial.problem, before))
         twin = (twin_key, listing(before)) if twin_key else None
         beyond = beyond_data(trial, self.noise)
-        unshown = [e for e in new if not any(
-            _sized(trial, k) and k not in beyond and _apart(trial, k, EFFECTS[e].differs_from.get(k))
-            and not _placed(trial, k, EFFECTS[e].differs_from.get(k))
-            for k in EFFECTS[e].size_keys)]
+        unshown = self._unshown(trial, new, beyond)
+        if unshown and unresolved_drop(trial, self.noise) is not None:
+            # a drop the data do not resolve trades with the candidate's size (a curve
+            # of δ → 0 placed far beyond the fastest speed bends like a viscous rise): no
+            # drop, no Stribeck parameters (§7b, 5), so its size is read without it
+            dropless = without_drop(trial)
+            dropless_beyond = beyond_data(dropless, self.noise)
+            if not self._unshown(dropless, new, dropless_beyond):
+                unshown = []
         if unshown:
             keys = EFFECTS[unshown[0]].size_keys
             differs = EFFECTS[unshown[0]].differs_from
