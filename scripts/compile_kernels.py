@@ -11,7 +11,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from breakaway.api.simulation import _warm_up, run_ramp, run_simulation
+from breakaway.api.simulation import load_models, run_ramp, run_simulation
 from breakaway.identify import identify
 from breakaway.identify.synthetic import make_dataset
 from breakaway.plan import plan_experiment
@@ -19,7 +19,7 @@ from breakaway.params import DEFAULTS, LUGRE_1995
 
 PRESLIDING = {n: DEFAULTS[n] for n in ("Fc", "Fs", "V", "delta", "sigma", "s", "m", "z_ba")}
 
-_warm_up()  # the integrator and both loop models
+load_models()  # the integrator and both loop models
 run_simulation("lugre", [1.0], LUGRE_1995, 10_000)
 run_ramp("presliding", 1.0, PRESLIDING, 10_000)
 run_ramp("lugre", 1.0, LUGRE_1995, 10_000)

@@ -77,7 +77,7 @@ def _nullable(values) -> list[float | None]:
     return [float(v) if v == v and abs(v) != float("inf") else None for v in values]
 
 
-def _warm_up() -> bool:
+def load_models() -> bool:
     """Load the compiled integrator and both loop models in the worker (numba's disk
     cache: ~0.3 s; the first request would otherwise pay it)."""
     from ..params import DEFAULTS, LOOP_DEFAULTS
@@ -113,7 +113,7 @@ class SimulationRunner:
         """Take runs (again, after a shutdown: an app's lifespan may run more than once)
         and start the worker now, warmed up."""
         self._closed = False
-        return self._worker.warm_up(_warm_up)
+        return self._worker.warm_up(load_models)
 
     async def run(self, timeout: float, *args: Any, target=run_simulation,
                   wait: float | None = None,

@@ -42,9 +42,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import allowance
+from .drop import unresolved_drop, without_drop
 from .effects import EFFECTS
 from .fitting import FitResult, smooth_order
-from .drop import unresolved_drop, without_drop
 from .heldout import HeldOut, heldout_blocks, heldout_error
 from .identifiability import correlation_time
 from .input_error import input_weights
@@ -143,7 +143,9 @@ class Judge:
         if unshown and unresolved_drop(trial, self.noise) is not None:
             # a drop the data do not resolve trades with the candidate's size (a curve
             # of δ → 0 placed far beyond the fastest speed bends like a viscous rise): no
-            # drop, no Stribeck parameters (§7b, 5), so its size is read without it
+            # drop, no Stribeck parameters (§7b, 5), so its size is read without it; the
+            # rest of the judgement stands on the trial as fitted (the report gives its
+            # final model without the drop: :func:`.drop.without_drop`)
             dropless = without_drop(trial)
             dropless_beyond = beyond_data(dropless, self.noise)
             if not self._unshown(dropless, new, dropless_beyond):
