@@ -183,9 +183,7 @@ class TimeseriesProblem(Problem):
             v_slip = effect.slip_velocity(self, p, v_slip)
         Fc, Fs = self._levels(p, ctx["d"] < 0)
         log_speed = self.log_speed if v_slip is self.v else None
-        g = stribeck_kernel(v_slip, Fc, Fs, p["V"], p["delta"], log_speed)
-        for effect in self.effect_objects:
-            g = effect.scale_g(self, p, g)
+        g = self._scaled(p, stribeck_kernel(v_slip, Fc, Fs, p["V"], p["delta"], log_speed))
         target = ctx["d"] * g
         for effect in self.effect_objects:
             target = target + effect.target(self, p, ctx["v"])
@@ -195,6 +193,12 @@ class TimeseriesProblem(Problem):
         for effect in self.effect_objects:
             F = effect.sensor(self, p, F, ctx)
         return F
+
+    def _scaled(self, p, g):
+        """``g`` scaled as the effects scale the Stribeck magnitude (a drift)."""
+        for effect in self.effect_objects:
+            g = effect.scale_g(self, p, g)
+        return g
 
     def sliding_rows(self):
         speed = np.abs(self.v)
@@ -272,10 +276,7 @@ class TimeseriesProblem(Problem):
         added = self.predict(params) - self.predict(params, sensor=False)
         # a force held late in a record whose friction grows (a drift) bounds the
         # start's levels by what it was then: each row's friction over its scale
-        scale = np.ones(self.x.size)
-        for effect in self.effect_objects:
-            scale = effect.scale_g(self, params, scale)
-        friction = ((self.measured - added) / scale)[held]
+        friction = ((self.measured - added) / self._scaled(params, np.ones(self.x.size)))[held]
         return max(float(np.max(friction)), 0.0), max(float(-np.min(friction)), 0.0)
 
     def resolution_noise(self, params, seed=0) -> float:
