@@ -31,8 +31,6 @@ STEADY = ("gearbox-steady", "offset-steady", "flat-steady")
 #: issue 26 still gets wrong on the seeds tested here; benchmarks/realistic.py gives the
 #: figures on seeds never used while developing.
 KNOWN_GAPS: dict[tuple[str, int], str] = {
-    ("gearbox-timeseries", 0): "viscous-power refused: its fit takes Fc to 0 with n = "
-                               "0.67 (truth 0.31), so linear viscous leaves Fc 80 % high",
     ("gearbox-coarse-spikes", 0): "Fc 39 % high, n = 0.51 (truth 0.31): the level and "
                                   "the curve trade on a coarse encoder",
     ("estimated-torque", 0): "since the stops: the backward pass drops the inertia (the "

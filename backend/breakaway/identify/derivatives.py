@@ -41,13 +41,59 @@ from .local_fits import (ORDER, WINDOWS, _quadratic_at, acceleration_bias, accel
 WINDOW_RESOLUTIONS = 8
 #: ... and at most this many samples on each side.
 MAX_HALF_WINDOW = 100
+#: Samples a window needs before a cubic over it says how far its slope is off.
+CUBIC_SAMPLES = 7
 
 
 @njit(cache=True)
-def _adaptive_velocity(t, x, span, max_half):
+def _slope(t, x, lo, hi):
+    """Least-squares slope of x over the samples [lo, hi]: the counts' ±q/2 errors
+    average out where an end-to-end difference would keep two of them."""
+    tm = 0.0
+    xm = 0.0
+    for j in range(lo, hi + 1):
+        tm += t[j]
+        xm += x[j]
+    tm /= hi - lo + 1
+    xm /= hi - lo + 1
+    num = 0.0
+    den = 0.0
+    for j in range(lo, hi + 1):
+        num += (t[j] - tm) * (x[j] - xm)
+        den += (t[j] - tm) ** 2
+    return num / den
+
+
+@njit(cache=True)
+def _cubic_slope(t, x, i, lo, hi):
+    """The slope at sample ``i`` of the least-squares cubic in t over [lo, hi], and how
+    much more variance per unit variance of x it has than the straight line's slope."""
+    scale = max(t[hi] - t[i], t[i] - t[lo])
+    moments = np.zeros((4, 4))
+    rhs = np.zeros(4)
+    for j in range(lo, hi + 1):
+        tau = (t[j] - t[i]) / scale
+        powers = np.array([1.0, tau, tau * tau, tau * tau * tau])
+        for a in range(4):
+            rhs[a] += powers[a] * (x[j] - x[i])
+            for b in range(4):
+                moments[a, b] += powers[a] * powers[b]
+    inverse = np.linalg.inv(moments)
+    slope = (inverse[1, 0] * rhs[0] + inverse[1, 1] * rhs[1] + inverse[1, 2] * rhs[2]
+             + inverse[1, 3] * rhs[3]) / scale
+    # the straight line's slope variance is 1/Σ(τ - τ̄)²; the cubic's, its inverse's
+    # element: the line is nested in the cubic, so the difference is the excess's
+    centred = moments[2, 0] - moments[1, 0] ** 2 / moments[0, 0]
+    excess = (inverse[1, 1] - 1.0 / centred) / scale**2
+    return slope, max(excess, 0.0)
+
+
+@njit(cache=True)
+def _adaptive_velocity(t, x, span, max_half, with_spread, error):
     n = x.size
     v = np.empty(n)
     duration = np.empty(n)
+    spread = np.zeros(n if with_spread else 0)
     for i in range(n):
         w = 1
         low = high = x[i]
@@ -61,23 +107,14 @@ def _adaptive_velocity(t, x, span, max_half):
             if high - low >= span or w >= max_half or (lo == 0 and hi == n - 1):
                 break
             w += 1
-        # least-squares slope over the window: the counts' ±q/2 errors average out
-        # where an end-to-end difference would keep two of them
-        tm = 0.0
-        xm = 0.0
-        for j in range(lo, hi + 1):
-            tm += t[j]
-            xm += x[j]
-        tm /= hi - lo + 1
-        xm /= hi - lo + 1
-        num = 0.0
-        den = 0.0
-        for j in range(lo, hi + 1):
-            num += (t[j] - tm) * (x[j] - xm)
-            den += (t[j] - tm) ** 2
-        v[i] = num / den
+        v[i] = _slope(t, x, lo, hi)
         duration[i] = t[hi] - t[lo]
-    return v, duration
+        if with_spread and hi - lo >= CUBIC_SAMPLES - 1:
+            # the counts' error moves the two slopes apart too; what they add is taken
+            # off (the re-reading of the record holds it), the rest is the speed's change
+            cubic, excess = _cubic_slope(t, x, i, lo, hi)
+            spread[i] = math.sqrt(max((cubic - v[i]) ** 2 - error**2 * excess, 0.0))
+    return v, duration, spread
 
 
 #: The position a model runs on is a local quadratic over the narrowest window over
@@ -145,8 +182,31 @@ def velocity_and_span(t, x, resolution: float = 0.0):
     x = np.ascontiguousarray(x, dtype=float)
     if x.size < 5 or resolution <= 0:
         return np.gradient(x, t), np.gradient(t) * 2.0
-    return _adaptive_velocity(t, x, WINDOW_RESOLUTIONS * resolution, MAX_HALF_WINDOW)
+    return _adaptive_velocity(t, x, WINDOW_RESOLUTIONS * resolution, MAX_HALF_WINDOW,
+                              False, 0.0)[:2]
 
+
+def velocity_spread(t, x, resolution: float = 0.0, error: float = 0.0) -> np.ndarray:
+    """How far :func:`velocity` [m/s] lies from the body's speed where the speed changes
+    within its window: the difference between the window's straight-line slope and the
+    slope at the sample of a cubic over the same window, less (in quadrature) what the
+    position error ``error`` [m] (std, :func:`position_error`) alone moves them apart
+    by; 0 for exact x, which is not taken over windows.
+
+    The straight line is exact where x is a quadratic over the window (a steady
+    acceleration); where the speed changes otherwise (the end of a speed plateau beside
+    a turn), its slope mixes both sides, and the cubic's third-order term measures by
+    how much. The counts' own error of v is what a re-reading of the record shows
+    (:meth:`~.models.timeseries.TimeseriesProblem.resolution_errors`); this is the
+    rest, an error of the model's input that goes through the model into each row's
+    error (:meth:`~.models.timeseries.TimeseriesProblem.velocity_errors`).
+    """
+    t = np.ascontiguousarray(t, dtype=float)
+    x = np.ascontiguousarray(x, dtype=float)
+    if x.size < 5 or resolution <= 0:
+        return np.zeros(x.size)
+    return _adaptive_velocity(t, x, WINDOW_RESOLUTIONS * resolution, MAX_HALF_WINDOW,
+                              True, error)[2]
 
 
 @dataclass(frozen=True)
@@ -274,4 +334,4 @@ def _span(v, spans) -> float:
 
 __all__ = ["Derivatives", "MAX_HALF_WINDOW", "POSITION_RESOLUTIONS", "WINDOW_RESOLUTIONS",
            "block_velocity", "derivatives", "position_error", "positions", "velocity",
-           "velocity_and_span"]
+           "velocity_and_span", "velocity_spread"]

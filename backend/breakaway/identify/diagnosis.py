@@ -145,8 +145,10 @@ def _diagnose(data: Dataset, progress, set_aside: SetAside | None = None,
 
     # what x's resolution sets through the base model, row by row: every fit from here
     # on weighs each row by the inverse of its error's variance
-    errors = screen_base.problem.resolution_errors(screen_base.params) \
-        if data.kind == "timeseries" else None
+    errors = velocity = None
+    if data.kind == "timeseries":
+        errors = screen_base.problem.resolution_errors(screen_base.params)
+        velocity = screen_base.problem.velocity_errors(screen_base.params)
     weights = input_weights(errors, noise.value,
                             stops=screen_base.problem.stop_rows(screen_base.params)) \
         if errors is not None else None
@@ -164,8 +166,8 @@ def _diagnose(data: Dataset, progress, set_aside: SetAside | None = None,
             data, base = screen_base.problem.data, screen_base
         screen = screen_base.problem.data
     # under a commanded force x's reading sets every row's error, and the rows where a
-    # jumps are not weighed apart (:meth:`.selection.Selection._reweigh`)
-    search = Selection(screen, noise.value, report, None if noise.command else errors)
+    # jumps are not weighed apart (:meth:`.selection.Selection.reweigh`)
+    search = Selection(screen, noise.value, report, None if noise.command else errors, velocity)
     available = []
     for effect, why in availability(screen_base.problem).items():
         if why is None:
@@ -199,6 +201,14 @@ def _diagnose(data: Dataset, progress, set_aside: SetAside | None = None,
             retried_heldout = search.heldout(retried)
             search.straightened_beside_drop(current, retried, retried_heldout)
             current, current_heldout, dropless = retried, retried_heldout, None
+    # the rows weighed under the chosen model, which may have changed since the
+    # search's last acceptance (a curve in place of a line, the drop gone); under the
+    # new weights each effect is judged again beside the rest
+    reweighed, reweighed_heldout = search.reweigh(current, current_heldout)
+    if reweighed is not current:
+        current, current_heldout = reweighed, reweighed_heldout
+        if len(current.effects) > 1:
+            current, current_heldout = search.backward(current, current_heldout)
     if dropless:
         if not screen_base.problem.tied:
             screen_base = without_drop(screen_base)
@@ -210,10 +220,13 @@ def _diagnose(data: Dataset, progress, set_aside: SetAside | None = None,
     last = {s.effect: s for s in search.steps}
     steps = [last[e] for e in current.effects if e in last]
     if screened and search.reweighed:
-        # every row weighed as the search's rows were, where a jumps
-        if full_errors is None:  # the base weighed no row apart
-            full_errors = full_problem.resolution_errors(base.params)
-        jumps = problem_for(data, current.effects).acceleration_errors(current.params)
+        # every row weighed as the search's rows were: where a jumps, and with what v's
+        # window sets under the chosen model
+        chosen = problem_for(data, current.effects)
+        full_errors = full_problem.resolution_errors(
+            base.params, velocity=chosen.velocity_errors(current.params))
+        jumps = chosen.acceleration_errors(current.params) if search.jumps is not None \
+            else None
         data = with_weights(data, input_weights(full_errors, noise.value, jumps,
                                                 full_problem.stop_rows(base.params)))
     if screened:
@@ -239,9 +252,17 @@ def _diagnose(data: Dataset, progress, set_aside: SetAside | None = None,
     # what the residual can fall to: the force's noise and what x's resolution sets
     expected = math.hypot(noise.value, inputs)
     white = is_white(final.residual(), final.problem, expected)
-    if white:
+    # the rows' misfit in units of their own expected errors (the noise and what x's
+    # reading sets, row by row)
+    misfit = misfit_ratio(final, noise, inputs, errors)
+    if white or (misfit <= UNEXPLAINED_RATIO and inputs >= noise.value):
         # with nothing left that the model lacks, no misfit moves an estimate along a
-        # valley of the fit: a correlated parameter is determined where its profile holds
+        # valley of the fit: a correlated parameter is determined where its profile
+        # holds. Nor where the rows' misfit is within their own errors and x's reading
+        # sets most of them: the structure left is where the reading leaves the
+        # prediction open, in rows the fit weighs out (a gearbox's plateaus beside its
+        # turns); beside a smaller input floor it is a misfit the weights do not hold,
+        # and it moves the estimates (a short record's σ = 167 ± 30 for a truth of 335)
         confirm_correlated(final)
     known = drop_bound_text(final, dropless) if dropless else {}
     beyond = beyond_data(final, noise.value, known)
@@ -250,8 +271,7 @@ def _diagnose(data: Dataset, progress, set_aside: SetAside | None = None,
     structure = residual_structure(final.residual(), final.problem, white)
     floor_low = [] if white else floor_low_warnings(final, expected, structure)
     # structure is left where the rows' misfit exceeds their own expected errors
-    unexplained = (not white) and not floor_low \
-        and misfit_ratio(final, noise, inputs, errors) > UNEXPLAINED_RATIO
+    unexplained = (not white) and not floor_low and misfit > UNEXPLAINED_RATIO
     warnings = list(prepared) + data_warnings(full_problem, noise, inputs) \
         + stick_slip_warnings(full_problem) + search.warnings \
         + beyond_data_warnings(beyond) + fit_warnings(final) \

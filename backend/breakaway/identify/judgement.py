@@ -85,13 +85,13 @@ class Judge:
         self._blocks = None
         self._heldout: dict = {}
 
-    def reweigh(self, data) -> None:
-        """Judge from here on with ``data``'s weights as the base, and a model that
-        reads a with the error of a where it jumps in its rows' errors (the rows weighed
-        as :meth:`~.selection.Selection._reweigh` weighs them)."""
+    def reweigh(self, data, jumps: bool) -> None:
+        """Judge from here on with ``data``'s weights as the base, and (``jumps``) a
+        model that reads a with the error of a where it jumps in its rows' errors (the
+        rows weighed as :meth:`~.selection.Selection.reweigh` weighs them)."""
         self.data = data
         self.base_weights = self.weights = data.weights
-        self.jumps = True
+        self.jumps = jumps
         self._weights.clear()
 
     def blocks(self, fit: FitResult):
