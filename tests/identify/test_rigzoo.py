@@ -33,10 +33,6 @@ STEADY = ("gearbox-steady", "offset-steady", "flat-steady")
 KNOWN_GAPS: dict[tuple[str, int], str] = {
     ("gearbox-coarse-spikes", 0): "Fc 39 % high, n = 0.51 (truth 0.31): the level and "
                                   "the curve trade on a coarse encoder",
-    ("estimated-torque", 0): "since the stops: the backward pass drops the inertia (the "
-                             "RMSE where the body moves rises from 0.055 to 0.083 N·m "
-                             "with it, under weights taken again from m_e·a) and the "
-                             "offset, and a lag that is not there takes their place",
 }
 
 

@@ -49,7 +49,8 @@ REWEIGH_CHANGE = 0.1
 class Selection(NestedCurves):
     """The state of one search: the data, the gates' verdicts, the steps taken."""
 
-    def __init__(self, data: Dataset, noise: float, report, errors=None, velocity=None):
+    def __init__(self, data: Dataset, noise: float, report, errors=None, velocity=None,
+                 command=False):
         self.data = data
         #: each row's force error [N] that x's reading sets under the base model (what
         #: the data's weights, if any, were made of); None but for a time series of a
@@ -60,6 +61,7 @@ class Selection(NestedCurves):
         self.velocity = velocity if velocity is not None or errors is None \
             else np.zeros_like(errors)
         self.noise = noise
+        self.command = command
         self.report = report
         self.judgement = Judge(data, noise)
         self.restarts = best_base_starts(data)
@@ -150,7 +152,10 @@ class Selection(NestedCurves):
         window cannot fix (:meth:`~.models.timeseries.TimeseriesProblem.velocity_errors`)
         counts for less: under the base model a gearbox's curve is flat on its plateaus,
         and the rows beside its turns, read 40 % slow, drew σ·|v|ⁿ to n = 0.54 (truth
-        0.36) and Fc 30 % high.
+        0.36) and Fc 30 % high. Under a commanded force too: x's reading sets every
+        row's error there, and a DAC's servo whose slow rows its counts leave open named
+        a curve of n = 0.2–0.5 for its straight viscous rise, with Fc a third of the
+        truth.
 
         Once the model reads the acceleration (an inertia), the rows where a jumps
         (a carriage's start and braking) are weighed by the error a's local fit makes
@@ -168,7 +173,7 @@ class Selection(NestedCurves):
         if self.errors is None:
             return current, current_heldout
         jumps = self.jumps
-        if jumps is None and current.problem.stick_slip is None:
+        if jumps is None and current.problem.stick_slip is None and not self.command:
             found = current.problem.acceleration_errors(current.params)
             jumps = found if found is not None and found.any() else None
         velocity = current.problem.velocity_errors(current.params)
