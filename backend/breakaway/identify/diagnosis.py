@@ -166,7 +166,7 @@ def _diagnose(data: Dataset, progress, set_aside: SetAside | None = None,
             data, base = screen_base.problem.data, screen_base
         screen = screen_base.problem.data
     # under a commanded force x's reading sets every row's error, and the rows where a
-    # jumps are not weighed apart (:meth:`.selection.Selection.reweigh`)
+    # jumps are not weighed apart (:meth:`.reweighing.Reweighing.reweigh`)
     search = Selection(screen, noise.value, report, errors, velocity, noise.command)
     available = []
     for effect, why in availability(screen_base.problem).items():

@@ -88,7 +88,7 @@ class Judge:
     def reweigh(self, data, jumps: bool) -> None:
         """Judge from here on with ``data``'s weights as the base, and (``jumps``) a
         model that reads a with the error of a where it jumps in its rows' errors (the
-        rows weighed as :meth:`~.selection.Selection.reweigh` weighs them)."""
+        rows weighed as :meth:`~.reweighing.Reweighing.reweigh` weighs them)."""
         self.data = data
         self.base_weights = self.weights = data.weights
         self.jumps = jumps

@@ -12,13 +12,14 @@ from ...presliding import _presliding_kernel
 from ...steady import stribeck_kernel
 from ..derivatives import (block_velocity, derivatives, position_error, positions,
                            velocity_spread)
-from ..local_fits import WINDOWS, acceleration_at, smooth_fit
+from ..local_fits import WINDOWS, acceleration_at
 from ..effects import engaged_presliding
 from ..kinematics import REVERSAL_STEPS, direction, position_noise, quantum
 from ..stickslip import find_stick_slip
 from ..stops import find_stops, stop_bounds, stop_mask
 from ..strokes import breakaway_places, breakaways_apart, last_reversal
 from .base import Problem, Scales, _robust_scale
+from .reading import ReadingErrors
 
 #: Kinematics per dataset (a fit builds many problems on one record).
 _KINEMATICS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
@@ -30,20 +31,11 @@ GROSS_SLIDING_Z = 1.25
 #: presliding distance past the point where presliding ends (z = 2): a fit whose (E6')
 #: saturates a little before the ends of closed presliding loops has not seen sliding.
 SHOWN_SLIDING_Z = 2.0
-#: Readings of the smoothed record that estimate what the resolution of x does.
-RESOLUTION_DRAWS = 4
-#: The jitter of an encoder's reading at a count boundary, in counts (its electronics).
-FLICKER = 0.25
-#: The short of the two smoothings of the record [samples] (a quick turn survives it).
-SHORT_SMOOTHING = 13
 #: A body in presliding is held when it moves slower than this percentile of its speeds
 #: in gross sliding.
 HELD_SPEED_PERCENTILE = 10
 #: Samples averaged before the direction of a noisy x is read.
 NOISY_X_WINDOW = 21
-#: The share of the rows outside stops in gross sliding for a record to slide between
-#: its stops (:meth:`TimeseriesProblem._slides_between_stops`).
-SLIDING_BETWEEN_STOPS = 0.5
 
 
 def with_weights(data, weights):
@@ -55,8 +47,9 @@ def with_weights(data, weights):
     return weighted
 
 
-class TimeseriesProblem(Problem):
-    """(E6') along the measured x(t)."""
+class TimeseriesProblem(ReadingErrors, Problem):
+    """(E6') along the measured x(t); what x's reading sets through it, row by row, is
+    :class:`.reading.ReadingErrors`'."""
 
     kind = "timeseries"
     base_names = ("Fc", "Fs", "V", "delta", "s")
@@ -238,6 +231,10 @@ class TimeseriesProblem(Problem):
         last, _ = self._last_reversal()
         return params["s"] * np.abs(self.x - self.x[last])
 
+    def gross_sliding(self, params) -> np.ndarray:
+        """Rows in gross sliding under ``params`` (:data:`GROSS_SLIDING_Z`)."""
+        return self.presliding_fraction(params) >= GROSS_SLIDING_Z
+
     def curve_speeds(self, params):
         z = self.presliding_fraction(params)
         if not np.max(z, initial=0.0) >= SHOWN_SLIDING_Z:
@@ -283,137 +280,6 @@ class TimeseriesProblem(Problem):
         # start's levels by what it was then: each row's friction over its scale
         friction = ((self.measured - added) / self._scaled(params, np.ones(self.x.size)))[held]
         return max(float(np.max(friction)), 0.0), max(float(-np.min(friction)), 0.0)
-
-    def resolution_noise(self, params, seed=0) -> float:
-        """RMS force error [N] that the resolution of x alone causes in the model.
-
-        The record is smoothed (the local quadratic of :mod:`..derivatives`), and the
-        model run on that path with its own reversals is compared with the model run
-        on the path read again the way the record was read — by an encoder of the same
-        step at a random phase (each reading keeps its error while the body stays
-        within a count, as real counts do), or with the same noise std — with the
-        reversals this engine finds in such a reading. Both parts count: (E6') is
-        steepest just after a reversal, where a count of x_r moves F most. The path is
-        smoothed at two scales, the acceleration's window and
-        :data:`SHORT_SMOOTHING` samples, and the smaller error is taken: a smoothing
-        too long hides a quick turn, one too short keeps the steps of slow motion in
-        the "exact" path, and either only adds to the estimate.
-        """
-        return float(np.sqrt(np.mean(np.square(self.resolution_errors(params, seed)))))
-
-    def resolution_errors(self, params, seed=0, velocity=None) -> np.ndarray:
-        """Each row's RMS force error [N] that the resolution of x causes in the model
-        (:meth:`resolution_noise`, row by row): largest just after reversals, where
-        (E6') is steep, in stops, where the body may have turned unseen
-        (:meth:`_stop_errors`), and where the speed changes within the window v is
-        taken over (:meth:`velocity_errors`, or ``velocity``, another model's); zero
-        for exact x."""
-        if self.resolution_x == 0:
-            return np.zeros(self.x.size)
-        reading = min((self._reading_errors(params, window, seed)
-                       for window in {SHORT_SMOOTHING, self.derivatives.window}),
-                      key=lambda rows: float(np.mean(np.square(rows))))
-        if velocity is None:
-            velocity = self.velocity_errors(params)
-        return np.hypot(np.hypot(reading, self._stop_errors(params)), velocity)
-
-    def velocity_errors(self, params) -> np.ndarray:
-        """Each row's force error [N] in gross sliding from where v's window lies
-        (:func:`..derivatives.velocity_spread`): half the change of what the effects
-        add to the steady force in the row's direction (a viscous rise) between speeds
-        |v| raised and lowered by the spread. A re-reading of the record
-        (:meth:`_reading_errors`) takes v over the same windows as the record does and
-        cannot show it: a gearbox's plateaus at 0.1 rad/s, next to turns, read 40 %
-        slow, where σ·|v|ⁿ with n = 0.36 is steep. Not the Stribeck drop's: weighed by
-        its own slope, the rows that would show a drop absent count for less wherever
-        a fit puts one (strokes of a dry slide then "resolved" 2 % of drop at
-        0.1 mm/s). In presliding the force follows x, not v, and the re-reading holds
-        what x's reading sets there."""
-        if not self.v_spread.any() or not self.effect_objects:
-            return np.zeros(self.x.size)
-        sliding = self.presliding_fraction(params) >= GROSS_SLIDING_Z
-        speed = np.abs(self.v)
-        faster = self.d * (speed + self.v_spread)
-        slower = self.d * np.maximum(speed - self.v_spread, 0.0)
-        change = sum(effect.target(self, params, faster) - effect.target(self, params, slower)
-                     for effect in self.effect_objects)
-        return np.where(sliding, 0.5 * np.abs(change), 0.0)
-
-    def stop_rows(self, params) -> np.ndarray | None:
-        """Rows within a stop (:func:`..stops.find_stops`) where the body slides between
-        its stops under ``params`` (:meth:`_slides_between_stops`), or None."""
-        if self.stop_mask is None or not self._slides_between_stops(params):
-            return None
-        return self.stop_mask
-
-    def _slides_between_stops(self, params) -> bool:
-        """Whether the body slides where it is not stopped: at least
-        :data:`SLIDING_BETWEEN_STOPS` of the other rows in gross sliding under
-        ``params``. A presliding test never slides far past its presliding distance;
-        every row of it is presliding, its stops are no less informative than the rest,
-        and what the reading leaves open there is the re-reading's to say."""
-        z = self.presliding_fraction(params)[~self.stop_mask]
-        return z.size > 0 and float(np.mean(z >= GROSS_SLIDING_Z)) >= SLIDING_BETWEEN_STOPS
-
-    def _stop_errors(self, params) -> np.ndarray:
-        """Each row's force error [N] from turns the reading cannot see: a body that
-        halts within a count (or within the reversal hysteresis) may turn there unseen,
-        and its friction then runs down the presliding curve through what the record
-        does not show. The difference between the model on the record's path and on one
-        that turns at the start of each stop (:func:`..stops.find_stops`) and moves back
-        through the stop's span (at least half a count), with the rows after it, which
-        re-engage from the turn back at the stop's end; never more than the measured
-        force says such a turn changed (:func:`..stops.stop_bounds`)."""
-        if self.stop_rows(params) is None:
-            return np.zeros(self.x.size)
-        dither = np.zeros(self.x.size)
-        directions = self.d.copy()
-        for a, b in self.stops:
-            back = max(float(np.ptp(self.recorded_x[a:b])), 0.5 * self.quantum_x)
-            turned = -self.d[a]
-            dither[a:b] = turned * back * np.linspace(0.0, 1.0, b - a) \
-                - (self.x[a:b] - self.x[a])
-            directions[a:b] = turned
-        difference = np.abs(self.predict(params, dither, directions=directions)
-                            - self.predict(params))
-        return np.minimum(difference, self.stop_bounds)
-
-    def acceleration_errors(self, params) -> np.ndarray | None:
-        """Each row's force error [N] where a jumps, which no reading at the record's
-        own windows shows (:meth:`resolution_errors` leaves it out): the local fit
-        spreads the jump over its window
-        (:attr:`..derivatives.Derivatives.bias`), and an effect that reads a (an
-        inertia's m_e) carries it into the force. None where no effect reads a or a is
-        not taken by local fits."""
-        gain = sum(effect.acceleration_gain(self, params) for effect in self.effect_objects)
-        if not gain or self.derivatives.bias is None:
-            return None
-        return gain * self.derivatives.bias
-
-    def _reading_errors(self, params, window: int, seed: int) -> np.ndarray:
-        rng = np.random.default_rng(seed)
-        smooth = np.concatenate([
-            smooth_fit(self.t[a:b], self.recorded_x[a:b], window)[0] if b - a >= window
-            else self.recorded_x[a:b] for a, b in self.blocks])
-        # the path's own reversals: any turn the reading could resolve at all
-        exact = self.predict(params, smooth - self.x,
-                             directions=self.kinematic_direction(smooth, 0.5 * self.resolution_x))
-        errors = []
-        for _ in range(RESOLUTION_DRAWS):
-            if self.quantum_x > 0:
-                # a random phase of the grid, and the flicker of a count boundary: an
-                # encoder at rest near one reads either count (a quarter count of jitter)
-                phase = rng.uniform(0.0, self.quantum_x)
-                jitter = FLICKER * self.quantum_x * rng.standard_normal(smooth.size)
-                read = self.quantum_x * np.round((smooth - phase + jitter) / self.quantum_x) \
-                    + phase
-            else:
-                read = smooth + self.noise_x * rng.standard_normal(smooth.size)
-            # the reading goes through what this engine does with a record
-            path = self.model_positions(read)
-            errors.append(self.predict(params, path - self.x,
-                                       directions=self.kinematic_direction(path)) - exact)
-        return np.sqrt(np.mean(np.square(errors), axis=0))
 
     def after_reversal(self, reach):
         """Rows within ``reach`` [m] of their last reversal (none before the first)."""
