@@ -7,7 +7,8 @@ import math
 import numpy as np
 import pytest
 
-from breakaway.identify.derivatives import derivatives, velocity, velocity_spread
+from breakaway.identify.derivatives import (derivatives, through_edges, velocity,
+                                            velocity_spread)
 from breakaway.identify.local_fits import (AGREEMENT, NOISE_TO_SIGNAL, WINDOWS, acceleration_noise,
                                            choose_window, local_fit, smooth_fit)
 
@@ -210,3 +211,61 @@ def test_the_velocity_spread_is_nil_where_the_slope_holds_and_measures_a_turns_s
     assert _rms(velocity_spread(t, reading, count)[steady]) > _rms(v[steady] - v_true[steady])
     # exact x is differentiated by numpy.gradient, not over windows: no spread
     assert not velocity_spread(t, x, 0.0).any()
+
+
+def _plateaus(count, rate=500.0, seed=0):
+    """A shaft at 0.35 rad/s for 1 s, turned within 0.1 s to 2.8 rad/s, read by an
+    encoder of ``count`` [rad] at a random phase: the slow plateau is some ten counts
+    of 45 samples each, the turn lies inside one count."""
+    rng = np.random.default_rng(seed)
+    t = np.arange(int(1.6 * rate)) / rate
+    share = np.clip((t - 1.0) / 0.1, 0.0, 1.0)
+    v_true = -0.35 + 3.15 * 0.5 * (1.0 - np.cos(np.pi * share))
+    x = np.concatenate([[0.0], np.cumsum(0.5 * (v_true[1:] + v_true[:-1]) * np.diff(t))])
+    phase = rng.uniform(0.0, count)
+    return t, np.floor((x + phase) / count) * count, x + phase, v_true
+
+
+def test_the_path_through_an_encoders_edges_is_within_a_samples_travel():
+    count = 2 * np.pi / 200
+    t, reading, x, v_true = _plateaus(count)
+    path = through_edges(t, reading)
+    # the counts sit up to a count below the truth, the path on the boundaries it crossed
+    slow = (t > 0.1) & (t < 0.9)
+    boundary = x - 0.5 * count  # the reading's midpoints lie half a count below x
+    assert np.max(np.abs(reading[slow] - boundary[slow])) > 0.45 * count
+    travel = 0.35 / 500.0
+    assert np.max(np.abs(path[slow] - boundary[slow])) < travel + 1e-12
+    # exact x has an edge at every sample: the path is its three-point average
+    np.testing.assert_allclose(through_edges(t, x)[1:-1], 0.5 * (x[1:-1] + x[:-2]) +
+                               0.5 * (x[2:] - x[:-2]) * 0.5, rtol=0, atol=1e-3 * count)
+
+
+def test_an_encoders_speed_is_timed_by_its_edges_over_a_window_that_stays_straight():
+    count = 2 * np.pi / 200
+    t, reading, _, v_true = _plateaus(count)
+    staircase = velocity(t, reading, count)  # slopes of the counts themselves
+    edges = velocity(t, reading, count, quantised=True)
+    plateau = (t > 0.2) & (t < 0.8)
+    assert _rms(edges[plateau] / v_true[plateau] - 1) < 0.01
+    # the windows stop short of the turn: before it, v holds within 5 % up to 0.15 s
+    # from it, where windows of eight counts would reach into it
+    before = (t > 0.85) & (t < 0.93)
+    assert _rms(edges[before] / v_true[before] - 1) < 0.05
+    assert _rms(staircase[before] / v_true[before] - 1) > 0.3
+    # fast, after the turn, every sample is an edge and v is as good as before (the
+    # record's last count is held: the reading says no more there)
+    fast = (t > 1.3) & (t < 1.55)
+    assert _rms(edges[fast] / v_true[fast] - 1) < 0.01
+
+
+def test_an_encoder_that_flickers_at_its_edges_is_still_timed_over_its_plateau():
+    # a quarter of a count of jitter on every sample: edges come in bursts at each
+    # boundary; the record's own straightness says how far the path may depart
+    count = 2 * np.pi / 200
+    t, _, x, v_true = _plateaus(count)
+    rng = np.random.default_rng(3)
+    reading = np.floor((x + 0.25 * count * rng.standard_normal(x.size)) / count) * count
+    edges = velocity(t, reading, count, quantised=True)
+    plateau = (t > 0.2) & (t < 0.8)
+    assert _rms(edges[plateau] / v_true[plateau] - 1) < 0.05

@@ -157,7 +157,8 @@ class ReadingErrors:
             # the reading goes through what this engine does with a record
             path = self.model_positions(read)
             errors.append(self.predict(params, path - self.x,
-                                       directions=self.kinematic_direction(path)) - exact)
+                                       directions=self.kinematic_direction(path),
+                                       velocity=self.kinematic_velocity(read)) - exact)
         return np.sqrt(np.mean(np.square(errors), axis=0))
 
 

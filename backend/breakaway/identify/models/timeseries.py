@@ -86,7 +86,8 @@ class TimeseriesProblem(ReadingErrors, Problem):
         v, a = self.derivatives.v, self.derivatives.a
         error = position_error(self.t, self.recorded_x, self.quantum_x, self.noise_x)
         v_spread = np.concatenate([velocity_spread(self.t[i:j], self.recorded_x[i:j],
-                                                   self.resolution_x, error)
+                                                   self.resolution_x, error,
+                                                   self.derivatives.edges)
                                    for i, j in self.blocks])
         with np.errstate(divide="ignore"):
             log_speed = np.log(np.abs(v))  # g's argument, reused by every evaluation
@@ -121,7 +122,8 @@ class TimeseriesProblem(ReadingErrors, Problem):
     def kinematic_velocity(self, x):
         """v of another position record of the same samples (the body behind a play, x
         dithered by its resolution), taken as the record's own v is."""
-        return block_velocity(self.t, x, self.resolution_x, self.blocks)
+        return block_velocity(self.t, x, self.resolution_x, self.blocks,
+                              self.derivatives.edges)
 
     def kinematic_acceleration(self, x):
         """a of another position record of the same samples, taken as the record's own
@@ -161,15 +163,15 @@ class TimeseriesProblem(ReadingErrors, Problem):
     def reversals(self) -> int:
         return int(np.count_nonzero(np.diff(self.d)))
 
-    def predict(self, p, dither=None, sensor=True, directions=None):
+    def predict(self, p, dither=None, sensor=True, directions=None, velocity=None):
         """Predicted force [N]; ``dither`` [m] is added to the positions (velocities
-        follow; the directions stay unless ``directions`` are given), to propagate the
-        resolution of x. ``sensor=False`` leaves out what the sensor adds (offset,
-        inertia, …): the friction alone."""
+        follow unless ``velocity`` is given: a reading's own; the directions stay unless
+        ``directions`` are given), to propagate the resolution of x. ``sensor=False``
+        leaves out what the sensor adds (offset, inertia, …): the friction alone."""
         ctx = {"x": self.x, "v": self.v, "d": self.d, "engaged": None}
         if dither is not None:
             ctx["x"] = self.x + dither
-            ctx["v"] = self.kinematic_velocity(ctx["x"])
+            ctx["v"] = self.kinematic_velocity(ctx["x"]) if velocity is None else velocity
             if any(effect.reads_acceleration for effect in self.effect_objects):
                 ctx["a"] = self.kinematic_acceleration(ctx["x"])
         if directions is not None:
