@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from breakaway.identify.fitting import fit_model, refit
-from breakaway.identify.heldout import BLOCKS, heldout_blocks, heldout_error
+from breakaway.identify.heldout import BLOCKS, HeldOut, heldout_blocks, heldout_error
 from breakaway.identify.models import problem_for
 from breakaway.identify.synthetic import _dataset, make_dataset
 
@@ -73,3 +73,14 @@ def test_chord_refits_match_full_refits_without_each_block(kind):
     assert chord.rmse == pytest.approx(math.sqrt(sum(full) / data.n), rel=0.02)
     # predicting rows it did not see, the model does worse than on rows it did
     assert chord.rmse > fit.rmse
+
+
+def test_the_weighted_heldout_error_counts_each_row_by_its_weight():
+    # rows where x's reading makes the force uncertain (weight 1/100) hardly count
+    residual = np.r_[np.full(90, 0.1), np.full(10, 3.0)]
+    held = HeldOut(residual, [np.arange(100)])
+    weights = np.r_[np.ones(90), np.full(10, 0.01)]
+    expected = math.sqrt((90 * 0.01 + 10 * 0.01 * 9.0) / (90 + 0.1))
+    assert held.weighted_rmse(weights) == pytest.approx(expected, rel=1e-12)
+    assert held.weighted_rmse(None) == pytest.approx(held.rmse, rel=1e-12)
+    assert held.rmse == pytest.approx(math.sqrt((90 * 0.01 + 10 * 9.0) / 100), rel=1e-12)

@@ -30,10 +30,7 @@ STEADY = ("gearbox-steady", "offset-steady", "flat-steady")
 #: change that mends one fails here until its entry is removed). What the engine of
 #: issue 26 still gets wrong on the seeds tested here; benchmarks/realistic.py gives the
 #: figures on seeds never used while developing.
-KNOWN_GAPS: dict[tuple[str, int], str] = {
-    ("gearbox-coarse-spikes", 0): "Fc 39 % high, n = 0.51 (truth 0.31): the level and "
-                                  "the curve trade on a coarse encoder",
-}
+KNOWN_GAPS: dict[tuple[str, int], str] = {}
 
 
 def _seeds(family):

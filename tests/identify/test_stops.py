@@ -84,3 +84,21 @@ def test_a_force_that_stays_put_bounds_no_turn():
     rng = np.random.default_rng(2)
     F = 5.0 + 0.01 * rng.standard_normal(300)
     assert np.max(stop_bounds(F, [(100, 200)])) < 0.01
+
+
+def test_a_count_left_back_the_way_it_came_is_a_stop_however_brief():
+    # out at a count per 5 samples, a turn inside the last count (it holds 6 samples,
+    # hardly longer than the runs beside it), back at a count per 5 samples: the body
+    # turned there, at a time the reading does not give
+    out = np.arange(50) * COUNT / 5
+    turn = out[-1] + COUNT / 5 + 0.1 * COUNT * np.sin(np.linspace(0, np.pi, 6))
+    back = out[::-1]
+    reading = _read(np.r_[out, turn, back])
+    stops = find_stops(reading, [(0, reading.size)], COUNT, REVERSAL_STEPS * COUNT)
+    turned = [(a, b) for a, b in stops if a <= 52 < b]
+    assert len(turned) == 1
+    first, last = turned[0]
+    # the run of the count the body turned in, no more: it came in at sample 48 at the
+    # earliest and left 5 + 6 + 5 samples later at the latest
+    assert 45 <= first <= 52 and 52 < last <= 66
+    assert len(stops) == 1

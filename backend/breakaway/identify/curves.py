@@ -41,20 +41,19 @@ class NestedCurves:
             if weighted_rmse(again) < weighted_rmse(trial):
                 trials[effect] = again
 
-    def _settle_power(self, passing, trials, current_heldout):
+    def _settle_power(self, passing, trials, current):
         """``viscous-power`` is named only when its n is clearly not 1 and the BIC and
         the held-out error prefer it; otherwise ``viscous``."""
         if "viscous-power" not in passing:
             return passing
         power, viscous = trials["viscous-power"], trials.get("viscous")
-        h_power = self.heldout(power)
-        self.verdicts["viscous-power"].heldout = h_power
+        self.verdicts["viscous-power"].heldout = self.heldout(power)
+        straight = current  # the model the curve's straight form did not pass beside
         if viscous is not None and "viscous" in passing:
-            h_viscous = self.heldout(viscous)
-            self.verdicts["viscous"].heldout = h_viscous
-        else:
-            h_viscous = current_heldout
-        preferred, why = power_is_preferred(power, viscous, h_power, h_viscous)
+            self.verdicts["viscous"].heldout = self.heldout(viscous)
+            straight = viscous
+        preferred, why = power_is_preferred(power, viscous, self.weighted_heldout(power),
+                                            self.weighted_heldout(straight))
         if preferred:
             if "viscous" in self.verdicts:
                 self.verdicts["viscous"].reason = f"viscous-power describes the data better: {why}"
@@ -78,7 +77,9 @@ class NestedCurves:
             why = f"its extra parameter does not earn its place beside the rest of the model: {beside}" \
                 if beside else None
             if why is None and effect == "viscous-power":
-                preferred, text = power_is_preferred(current, line, current_heldout, line_heldout)
+                preferred, text = power_is_preferred(current, line,
+                                                     self.weighted_heldout(current),
+                                                     self.weighted_heldout(line))
                 why = None if preferred else text
             if why is None:
                 continue

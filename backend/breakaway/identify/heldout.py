@@ -94,6 +94,12 @@ class HeldOut:
     def rmse(self) -> float:
         return math.sqrt(float(np.mean(self.residual**2)))
 
+    def weighted_rmse(self, weights=None) -> float:
+        """The held-out RMSE [N] with the rows weighted by ``weights`` (plain for None)."""
+        if weights is None:
+            return self.rmse
+        return math.sqrt(float(np.sum(weights * self.residual**2)) / float(np.sum(weights)))
+
 
 def heldout_error(fit: FitResult, blocks) -> HeldOut:
     """Each row's error under ``fit``'s model refitted without the row's block.

@@ -138,7 +138,7 @@ def _likelihood_distance(power, viscous) -> float:
 def power_is_preferred(power, viscous, heldout_power: float,
                        heldout_viscous: float) -> tuple[bool, str]:
     """The rule between ``viscous-power`` and ``viscous`` (fits of each, with their
-    held-out errors): the curve is named only when n differs from 1 by more than
+    held-out errors, rows weighted as in the fits): the curve is named only when n differs from 1 by more than
     :data:`POWER_SIGMAS` standard errors and both the BIC and the held-out error prefer
     it. Returns the verdict and the sentence that explains it.
 
@@ -191,11 +191,13 @@ def power_is_preferred(power, viscous, heldout_power: float,
     # its error on the record. A held-out error under it came from refits that found a
     # better optimum than the fit the report would name (a viscous fit that bent Fc to
     # its bound to imitate a curve): such a figure does not speak for that fit.
-    heldout_power = max(heldout_power, power.rmse)
+    heldout_power = max(heldout_power, curved)
     if viscous is not None:
-        heldout_viscous = max(heldout_viscous, viscous.rmse)
+        heldout_viscous = max(heldout_viscous, straight)
     if not heldout_power < heldout_viscous:
-        return False, (f"n = {n:.3g} {spread}, but the held-out error prefers viscous "
+        weighted = " (rows weighted as in the fit)" \
+            if power.problem.data.weights is not None else ""
+        return False, (f"n = {n:.3g} {spread}, but the held-out error{weighted} prefers viscous "
                        f"({heldout_viscous:.4g} against {heldout_power:.4g} "
                        f"{power.problem.data.unit('N')})")
     return True, (f"n = {n:.3g} {spread} differs from 1 by {distance:.0f} standard "

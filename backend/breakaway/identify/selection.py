@@ -80,6 +80,12 @@ class Selection(NestedCurves, Reweighing):
         """The held-out error of ``fit``'s model [N] (:mod:`.heldout`)."""
         return self.judgement.heldout(fit).rmse
 
+    def weighted_heldout(self, fit: FitResult) -> float:
+        """The held-out error of ``fit``'s model [N] with the rows weighted as in its fit:
+        what a model is judged by where x's reading makes some rows' forces uncertain
+        (a turn inside one count of a coarse encoder, timed to a tenth of a second)."""
+        return self.judgement.heldout(fit).weighted_rmse(fit.problem.data.weights)
+
     def white(self, fit: FitResult) -> bool:
         return is_white(fit.residual(), fit.problem, self.noise)
 
@@ -168,7 +174,7 @@ class Selection(NestedCurves, Reweighing):
             if reason is None:
                 passing.append(effect)
         passing = self._settle_indistinguishable(passing, trials)
-        passing = self._settle_power(passing, trials, current_heldout)
+        passing = self._settle_power(passing, trials, current)
         for effect in self._parsimonious(by_parsimony(passing, trials), trials):
             trial = trials[effect]
             shaky = unstable(self.data, trial, effect)
@@ -342,7 +348,8 @@ class Selection(NestedCurves, Reweighing):
                         self.judgement.judge(current, trial).reason):
                     continue
                 if candidate == "viscous-power" and effect == "viscous" and not \
-                        power_is_preferred(trial, current, heldout, current_heldout)[0]:
+                        power_is_preferred(trial, current, self.weighted_heldout(trial),
+                                           self.weighted_heldout(current))[0]:
                     continue
                 self.verdicts[effect] = Candidate(reduced.rmse, reduced.bic, None, False,
                                                   f"replaced by {candidate}, which explains "

@@ -91,7 +91,9 @@ def find_stops(recorded_x, blocks, quantum: float, hysteresis: float) -> list:
         within one count boundary (a body at rest on it flickers between two counts)
         or within the reversal hysteresis (turns inside it are not read as turns), and
         spends, per count it shows, :data:`STOP_RATIO` times as long as the run of one
-        count before and after it, and at least :data:`STOP_MIN_SAMPLES` samples.
+        count before and after it, and at least :data:`STOP_MIN_SAMPLES` samples; and
+        each run of one count (at least as long) that the reading leaves back to the
+        count it came from: the body turned inside it, when the reading cannot say.
     """
     if quantum <= 0:
         return []
@@ -106,6 +108,11 @@ def find_stops(recorded_x, blocks, quantum: float, hysteresis: float) -> list:
             firsts, lasts = _stop_groups(values, lengths, span, quantum,
                                          STOP_RATIO, STOP_MIN_SAMPLES)
             found.extend(zip((a + edges[firsts]).tolist(), (a + edges[lasts]).tolist()))
+        # a count the reading leaves back the way it came: the body turned inside it,
+        # at a time the reading does not give, however briefly it stayed
+        turns = np.flatnonzero(values[:-2] == values[2:]) + 1
+        turns = turns[lengths[turns] >= STOP_MIN_SAMPLES]
+        found.extend(zip((a + edges[turns]).tolist(), (a + edges[turns + 1]).tolist()))
         stops.extend(_merged(found))  # block by block: a stop never spans two
     return stops
 
