@@ -29,15 +29,39 @@ def _level_guesses(problem: Problem):
     return Fc, max(Fs, Fc)
 
 
+#: Stribeck velocities of the starts, as shares of the record's typical speed (the 95th
+#: percentile of |v|) ...
+TYPICAL_SHARES = (0.03, 0.1, 0.3, 1.0)
+#: ... and of its fastest, where that is further out: a record that moves in short slips
+#: between long creeps has its typical speed among the creeps.
+FASTEST_SHARES = (0.03, 0.1, 0.3)
+#: Two starts' Stribeck velocities within this factor are one.
+SPEED_FACTOR = 2.0
+
+
+def _stribeck_speeds(problem: Problem) -> list[float]:
+    """The starts' Stribeck velocities [m/s] (:data:`TYPICAL_SHARES`,
+    :data:`FASTEST_SHARES`): on a stick-slip record whose slips are a twentieth of its
+    rows, the typical speed is a creep's, and a grid below it alone missed the drop
+    where the slips start."""
+    typical = problem.scales.speed
+    speeds = [typical * share for share in TYPICAL_SHARES]
+    v = getattr(problem, "v", None)
+    fastest = float(np.max(np.abs(v))) if v is not None and np.size(v) else typical
+    for speed in (fastest * share for share in FASTEST_SHARES):
+        if all(max(speed / kept, kept / speed) >= SPEED_FACTOR for kept in speeds):
+            speeds.append(speed)
+    return speeds
+
+
 def base_starts(problem: Problem) -> list[dict]:
     """A grid of starting points for the base parameters (levels from the data)."""
     Fc, Fs = _level_guesses(problem)
     if problem.level_only:
         return [{"Fc": float(np.median(problem.measured)), "Fs": float(np.median(problem.measured)),
                  **problem.fixed}]
-    speeds = problem.scales.speed * np.array([0.03, 0.1, 0.3, 1.0])
     starts = []
-    for V in speeds:
+    for V in _stribeck_speeds(problem):
         for delta in (1.0, 2.0):
             p = {"Fc": Fc, "Fs": max(Fs, 1.02 * Fc), "V": float(V), "delta": delta}
             if problem.data.kind == "timeseries":
