@@ -156,9 +156,11 @@ class ReadingErrors:
                 read = smooth + self.noise_x * rng.standard_normal(smooth.size)
             # the reading goes through what this engine does with a record
             path = self.model_positions(read)
+            # v through an encoder's edges needs the counts themselves, as the record's
+            velocity = self.kinematic_velocity(read) if self.derivatives.edges else None
             errors.append(self.predict(params, path - self.x,
                                        directions=self.kinematic_direction(path),
-                                       velocity=self.kinematic_velocity(read)) - exact)
+                                       velocity=velocity) - exact)
         return np.sqrt(np.mean(np.square(errors), axis=0))
 
 
