@@ -138,9 +138,9 @@ def _likelihood_distance(power, viscous) -> float:
 def power_is_preferred(power, viscous, heldout_power: float,
                        heldout_viscous: float) -> tuple[bool, str]:
     """The rule between ``viscous-power`` and ``viscous`` (fits of each, with their
-    held-out errors, rows weighted as in the fits): the curve is named only when n differs from 1 by more than
-    :data:`POWER_SIGMAS` standard errors and both the BIC and the held-out error prefer
-    it. Returns the verdict and the sentence that explains it.
+    held-out errors, rows weighted as in the fits): the curve is named only when n
+    differs from 1 by more than :data:`POWER_SIGMAS` standard errors and both the BIC and
+    the held-out error prefer it. Returns the verdict and the sentence that explains it.
 
     An n on a bound of its range has no standard error; the distance from 1 is then the
     likelihood ratio's: the root of ``N·ln(RSS_viscous/RSS_power)``, which is n's
@@ -197,8 +197,8 @@ def power_is_preferred(power, viscous, heldout_power: float,
     if not heldout_power < heldout_viscous:
         weighted = " (rows weighted as in the fit)" \
             if power.problem.data.weights is not None else ""
-        return False, (f"n = {n:.3g} {spread}, but the held-out error{weighted} prefers viscous "
-                       f"({heldout_viscous:.4g} against {heldout_power:.4g} "
+        return False, (f"n = {n:.3g} {spread}, but the held-out error{weighted} prefers "
+                       f"viscous ({heldout_viscous:.4g} against {heldout_power:.4g} "
                        f"{power.problem.data.unit('N')})")
     return True, (f"n = {n:.3g} {spread} differs from 1 by {distance:.0f} standard "
                   f"errors, and the BIC and the held-out error prefer the curve")
