@@ -7,8 +7,8 @@ import math
 import numpy as np
 import pytest
 
-from breakaway.identify.derivatives import (derivatives, through_edges, velocity,
-                                            velocity_spread)
+from breakaway.identify.derivatives import derivatives, velocity, velocity_spread
+from breakaway.identify.encoder_edges import through_edges
 from breakaway.identify.local_fits import (AGREEMENT, NOISE_TO_SIGNAL, WINDOWS, acceleration_noise,
                                            choose_window, local_fit, smooth_fit)
 

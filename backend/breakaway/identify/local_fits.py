@@ -5,7 +5,8 @@ the same fit in t where the sampling is uneven, :func:`local_fit`) over at least
 narrowest window in which the error of x contributes at most :data:`NOISE_TO_SIGNAL` of
 a's RMS (:func:`choose_window`); each sample's window then widens for as long as the
 wider fits agree with every narrower one within their errors (:func:`adaptive_windows`).
-:mod:`.derivatives` takes v and a from here.
+:mod:`.derivatives` takes v and a from here; v is a least-squares slope over a window
+(:func:`_take_window`, with a cubic's slope beside it for how far the line is off).
 """
 
 from __future__ import annotations
@@ -263,7 +264,67 @@ def acceleration_at(t, x, windows) -> np.ndarray:
     return a
 
 
-__all__ = ["AGREEMENT", "CHOICE_ROWS", "FFT_WINDOW", "NOISE_TO_SIGNAL", "ORDER",
-           "UNIFORM_TOLERANCE", "WINDOWS", "acceleration_at", "acceleration_bias",
-           "acceleration_noise",
-           "adaptive_windows", "choose_window", "curvature_fit", "local_fit", "smooth_fit"]
+#: Samples a window needs before a cubic over it says how far its slope is off.
+CUBIC_SAMPLES = 7
+
+
+@njit(cache=True)
+def _slope(t, x, lo, hi):
+    """Least-squares slope of x over the samples [lo, hi]: the counts' ±q/2 errors
+    average out where an end-to-end difference would keep two of them."""
+    tm = 0.0
+    xm = 0.0
+    for j in range(lo, hi + 1):
+        tm += t[j]
+        xm += x[j]
+    tm /= hi - lo + 1
+    xm /= hi - lo + 1
+    num = 0.0
+    den = 0.0
+    for j in range(lo, hi + 1):
+        num += (t[j] - tm) * (x[j] - xm)
+        den += (t[j] - tm) ** 2
+    return num / den
+
+
+@njit(cache=True)
+def _cubic_slope(t, x, i, lo, hi):
+    """The slope at sample ``i`` of the least-squares cubic in t over [lo, hi], and how
+    much more variance per unit variance of x it has than the straight line's slope."""
+    scale = max(t[hi] - t[i], t[i] - t[lo])
+    moments = np.zeros((4, 4))
+    rhs = np.zeros(4)
+    for j in range(lo, hi + 1):
+        tau = (t[j] - t[i]) / scale
+        powers = np.array([1.0, tau, tau * tau, tau * tau * tau])
+        for a in range(4):
+            rhs[a] += powers[a] * (x[j] - x[i])
+            for b in range(4):
+                moments[a, b] += powers[a] * powers[b]
+    inverse = np.linalg.inv(moments)
+    slope = (inverse[1, 0] * rhs[0] + inverse[1, 1] * rhs[1] + inverse[1, 2] * rhs[2]
+             + inverse[1, 3] * rhs[3]) / scale
+    # the straight line's slope variance is 1/Σ(τ - τ̄)²; the cubic's, its inverse's
+    # element: the line is nested in the cubic, so the difference is the excess's
+    centred = moments[2, 0] - moments[1, 0] ** 2 / moments[0, 0]
+    excess = (inverse[1, 1] - 1.0 / centred) / scale**2
+    return slope, max(excess, 0.0)
+
+
+@njit(cache=True)
+def _take_window(t, x, i, lo, hi, v, duration, spread, with_spread, error):
+    """Sample ``i``'s v, the time it is taken over and (``with_spread``) its spread,
+    from the window [lo, hi]."""
+    v[i] = _slope(t, x, lo, hi)
+    duration[i] = t[hi] - t[lo]
+    if with_spread and hi - lo >= CUBIC_SAMPLES - 1:
+        # the counts' error moves the two slopes apart too; what they add is taken off
+        # (the re-reading of the record holds it), the rest is the speed's change
+        cubic, excess = _cubic_slope(t, x, i, lo, hi)
+        spread[i] = math.sqrt(max((cubic - v[i]) ** 2 - error**2 * excess, 0.0))
+
+
+__all__ = ["AGREEMENT", "CHOICE_ROWS", "CUBIC_SAMPLES", "FFT_WINDOW", "NOISE_TO_SIGNAL",
+           "ORDER", "UNIFORM_TOLERANCE", "WINDOWS", "acceleration_at", "acceleration_bias",
+           "acceleration_noise", "adaptive_windows", "choose_window", "curvature_fit",
+           "local_fit", "smooth_fit"]
