@@ -147,8 +147,8 @@ def _diagnose(data: Dataset, progress, set_aside: SetAside | None = None,
     # on weighs each row by the inverse of its error's variance
     errors = velocity = None
     if data.kind == "timeseries":
-        errors = screen_base.problem.resolution_errors(screen_base.params)
         velocity = screen_base.problem.velocity_errors(screen_base.params)
+        errors = screen_base.problem.resolution_errors(screen_base.params, velocity=velocity)
     weights = input_weights(errors, noise.value,
                             stops=screen_base.problem.stop_rows(screen_base.params)) \
         if errors is not None else None

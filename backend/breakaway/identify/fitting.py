@@ -116,14 +116,22 @@ def row_scales(data: Dataset, rows) -> np.ndarray | float:
     return 1.0 if data.weights is None else np.sqrt(data.weights[rows])
 
 
+def weighted_rms(residual, weights=None) -> float:
+    """The root mean square of ``residual`` [N] with its rows weighted by ``weights``
+    (plain for None)."""
+    r2 = np.square(residual)
+    if weights is None:
+        return math.sqrt(float(np.mean(r2)))
+    return math.sqrt(float(np.sum(weights * r2)) / float(np.sum(weights)))
+
+
 def weighted_rmse(fit: "FitResult") -> float:
     """``fit``'s root mean square residual with its rows weighted as in the fit
     (:func:`row_scales`; the plain RMSE where every row counts alike) [N]."""
     weights = fit.problem.data.weights
     if weights is None:
         return fit.rmse
-    r = fit.residual()
-    return math.sqrt(float(np.sum(weights * r**2)) / float(np.sum(weights)))
+    return weighted_rms(fit.residual(), weights)
 
 
 def _cost(problem, params, rows):
@@ -359,4 +367,4 @@ def _evaluated_at(data, effects, params, rows, kin):
 
 
 __all__ = ["FitError", "FitResult", "best_base_starts", "bic", "family", "fit_model",
-           "fit_with_effect", "refit", "row_scales", "weighted_rmse"]
+           "fit_with_effect", "refit", "row_scales", "weighted_rms", "weighted_rmse"]

@@ -29,7 +29,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .fitting import FitResult, refit, row_scales
+from .fitting import FitResult, refit, row_scales, weighted_rms
 
 #: Blocks a record is cut into (at least 5; fewer only for very short records).
 BLOCKS = 10
@@ -96,9 +96,7 @@ class HeldOut:
 
     def weighted_rmse(self, weights=None) -> float:
         """The held-out RMSE [N] with the rows weighted by ``weights`` (plain for None)."""
-        if weights is None:
-            return self.rmse
-        return math.sqrt(float(np.sum(weights * self.residual**2)) / float(np.sum(weights)))
+        return weighted_rms(self.residual, weights)
 
 
 def heldout_error(fit: FitResult, blocks) -> HeldOut:
