@@ -795,7 +795,7 @@ def short_viscous(seed: int = 0) -> Recording:
     return Recording("short-viscous", seed, csv, {**truth, "speeds": speeds,
                                                   "noise": channel.noise}, expect,
                      {"t": t, "x": x, "v": v, "friction": friction, "levels": levels,
-                      "counts": counts})
+                      "counts": counts, "encoder": encoder})
 
 
 def _steady_speeds(rng, v_min, v_max, per_direction):

@@ -33,11 +33,11 @@ from .effects import availability
 from .fitting import FitResult, fit_model, refit
 from .models import problem_for, with_weights
 from .drop import drop_bound_text, retried_drop, unresolved_drop, without_drop
-from .input_error import input_floor, input_weights, misfit_ratio
+from .input_error import input_floor, input_weights, misfit_ratio, scaled_residual
 from .noise import NoiseFloor, estimate, is_command, programmed_force
 from .outliers import spike_rows
 from .preparation import SetAside, prepare, without_spikes
-from .profile import confirm_correlated
+from .profile import confirm_correlated, follows_no_variable
 from .residuals import is_white, residual_structure
 from .screening import FULL_REFIT_EVALUATIONS, needs_screening, screening_blocks
 from .selection import Selection
@@ -255,14 +255,17 @@ def _diagnose(data: Dataset, progress, set_aside: SetAside | None = None,
     # the rows' misfit in units of their own expected errors (the noise and what x's
     # reading sets, row by row)
     misfit = misfit_ratio(final, noise, inputs, errors)
-    if white or (misfit <= UNEXPLAINED_RATIO and inputs >= noise.value):
+    if white or (misfit <= UNEXPLAINED_RATIO and inputs >= noise.value) \
+            or (misfit > UNEXPLAINED_RATIO and _disturbance_only(final, noise, errors, misfit)):
         # with nothing left that the model lacks, no misfit moves an estimate along a
         # valley of the fit: a correlated parameter is determined where its profile
         # holds. Nor where the rows' misfit is within their own errors and x's reading
         # sets most of them: the structure left is where the reading leaves the
         # prediction open, in rows the fit weighs out (a gearbox's plateaus beside its
         # turns); beside a smaller input floor it is a misfit the weights do not hold,
-        # and it moves the estimates (a short record's σ = 167 ± 30 for a truth of 335)
+        # and it moves the estimates (a short record's σ = 167 ± 30 for a truth of 335).
+        # Nor where the misfit is large and follows none of the record's variables: a
+        # disturbance of the force channel (mains hum), which no parameter follows
         confirm_correlated(final)
     known = drop_bound_text(final, dropless) if dropless else {}
     beyond = beyond_data(final, noise.value, known)
@@ -282,6 +285,16 @@ def _diagnose(data: Dataset, progress, set_aside: SetAside | None = None,
     return Diagnosis(data, noise, base, final, steps, heldout_before, current_heldout,
                      inputs, white, unexplained, search.verdicts, warnings, structure,
                      screen.n if screened else 0, time.perf_counter() - started)
+
+
+def _disturbance_only(fit, noise, errors, misfit: float) -> bool:
+    """Whether the misfit of ``fit`` follows none of the record's variables
+    (:func:`.profile.follows_no_variable`), its residual taken in units of each row's
+    expected error, as the misfit is: the rows where x's reading leaves the prediction
+    open (a stroke's turns) are not a dependence on where they lie."""
+    scaled = scaled_residual(fit, noise, errors)
+    residual = fit.residual() if scaled is None else scaled
+    return follows_no_variable(residual_structure(residual, fit.problem, False), misfit)
 
 
 def _base_fits(data: Dataset, screened: bool, start: FitResult | None = None):

@@ -52,14 +52,22 @@ def misfit_ratio(fit, noise: NoiseFloor, inputs: float, errors=None) -> float:
     10.1 N). Under a commanded force the input floor is the residual's own short-range
     variation (:func:`input_floor`), known for the record, not row by row: the RMSE is
     set against it."""
-    if errors is None or fit.problem.kind != "timeseries" or noise.command:
+    scaled = scaled_residual(fit, noise, errors)
+    if scaled is None:
         expected = math.hypot(noise.value, inputs)
         return fit.rmse / expected if expected > 0 else math.inf
-    r = fit.residual()
-    e2 = np.square(errors)
-    variance = noise.value**2 + e2
+    return float(np.sqrt(np.mean(np.square(scaled))))
+
+
+def scaled_residual(fit, noise: NoiseFloor, errors=None) -> np.ndarray | None:
+    """``fit``'s residual, each row in units of its own expected error
+    ``√(σ² + e_i²)`` (:func:`misfit_ratio`); None where the rows' errors are not known
+    one by one (no ``errors``, a commanded force, a kind other than a time series)."""
+    if errors is None or fit.problem.kind != "timeseries" or noise.command:
+        return None
+    variance = noise.value**2 + np.square(errors)
     with np.errstate(divide="ignore", invalid="ignore"):
-        return float(np.sqrt(np.mean(np.where(variance > 0, r**2 / variance, np.inf))))
+        return np.where(variance > 0, fit.residual() / np.sqrt(variance), np.inf)
 
 
 def input_weights(errors, noise: float, jumps=None, stops=None) -> np.ndarray | None:
