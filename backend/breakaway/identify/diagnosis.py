@@ -196,8 +196,10 @@ def _diagnose(data: Dataset, progress, set_aside: SetAside | None = None,
         # beside the search's drop can misplace one that is there: the chosen effects
         # with a drop fitted afresh, kept where the data determine it and it earns its
         # parameters as an effect does
-        retried = retried_drop(current, noise.value)
-        if retried is not None and search.judgement.needs_drop(current, retried) is None:
+        found = retried_drop(current, noise.value)
+        if found is not None and search.judgement.prefers_drop(current, found[1],
+                                                               found[0]) is None:
+            retried = found[0]
             retried_heldout = search.heldout(retried)
             search.straightened_beside_drop(current, retried, retried_heldout)
             current, current_heldout, dropless = retried, retried_heldout, None

@@ -129,11 +129,12 @@ def unresolved_drop(fit: FitResult, noise: float, bends: bool = True) -> str | N
     return None
 
 
-def retried_drop(fit: FitResult, noise: float) -> FitResult | None:
+def retried_drop(fit: FitResult, noise: float) -> tuple[FitResult, FitResult] | None:
     """``fit``'s effects with a Stribeck drop, fitted from Stribeck velocities spread
     over the speeds the data show the curve at: the best fit whose drop the data
     determine (its gap, V and δ, by :func:`unresolved_drop` with ``bends=False``, and
-    no Coulomb level on its bound), or None.
+    no Coulomb level on its bound), with the model without a drop it adds the drop to
+    (``fit``, or ``fit`` with a curve in its straight form); or None.
 
     ``fit`` is the model the search chose without a drop. A drop under a steeper rise
     (a curved viscous term rising fastest at low speed) never makes the curve fall, yet
@@ -147,10 +148,10 @@ def retried_drop(fit: FitResult, noise: float) -> FitResult | None:
     whose truth is a drop and a line: the drop and the line there lowered the BIC by 578
     against the curve), and beside the drop the curve's exponent, trading with it, can
     leave the drop unresolved where the line does not."""
-    tried = [_with_drop(fit, noise)] + [_with_drop(line, noise) for _, line
-                                        in straight_forms(fit.problem.data, fit)]
-    return min((again for again in tried if again is not None), key=lambda again: again.bic,
-               default=None)
+    origins = [fit] + [line for _, line in straight_forms(fit.problem.data, fit)]
+    tried = [(again, origin) for origin in origins
+             if (again := _with_drop(origin, noise)) is not None]
+    return min(tried, key=lambda pair: pair[0].bic, default=None)
 
 
 def _with_drop(fit: FitResult, noise: float) -> FitResult | None:
