@@ -267,7 +267,8 @@ def _diagnose(data: Dataset, progress, set_aside: SetAside | None = None,
         # turns); beside a smaller input floor it is a misfit the weights do not hold,
         # and it moves the estimates (a short record's σ = 167 ± 30 for a truth of 335).
         # Nor where the misfit is large and follows none of the record's variables: a
-        # disturbance of the force channel (mains hum), which no parameter follows
+        # disturbance of the force channel (mains hum), which no parameter follows (a
+        # small excess's shares along the variables are not told from chance)
         confirm_correlated(final)
     known = drop_bound_text(final, dropless) if dropless else {}
     beyond = beyond_data(final, noise.value, known)

@@ -10,7 +10,8 @@ true interval be much wider than ``± 2·SE``.
 That holds only where nothing is left that the model lacks. A misfit moves an estimate
 along a valley by many standard errors, in every block alike, so that neither the
 sandwich nor a profile can show it (a short record's σ = 90 ± 9 for a truth of 243,
-its profile as quadratic as promised): the check is made on a white final residual only
+its profile as quadratic as promised): the check is made on a white final residual, or
+where what is left lies within the rows' own errors and x's reading sets most of them
 (:func:`~.diagnosis.diagnose`), and elsewhere the correlation rule stands.
 
 A misfit that follows none of the record's variables is another matter: mains hum on
