@@ -16,7 +16,7 @@ rows it was not fitted to, block by block (:mod:`.heldout`):
    the report's rule or through a combination with another parameter, and not
    describing a part of the curve the data never show: an effect whose size the data
    leave open, on a bound, along a flat direction or larger than itself, has not been
-   shown); a candidate whose force a
+   shown: :mod:`.sizes`); a candidate whose force a
    smooth dependence on such a variable would make as well is credited all the same
    (physics first), and the report says which dependence would;
 3. the held-out error falls in total, and not in one lucky block: the gain summed over
@@ -48,6 +48,7 @@ from .fitting import FitResult, smooth_order
 from .heldout import HeldOut, heldout_blocks, heldout_error
 from .identifiability import correlation_time
 from .input_error import input_weights
+from .sizes import unshown, why_unshown
 from .warnings.beyond_data import beyond_data
 
 #: A BIC drop of 10 is "very strong" evidence (Kass & Raftery 1995).
@@ -106,17 +107,6 @@ class Judge:
             self._heldout[id(fit)] = (fit, heldout_error(fit, self.blocks(fit)))
         return self._heldout[id(fit)][1]
 
-    @staticmethod
-    def _unshown(trial: FitResult, new, beyond) -> list[str]:
-        """The effects of ``new`` none of whose sizes ``trial`` shows: determined, within
-        the data, apart from the base parameter it differs from and not only where the
-        directions break away apart."""
-        return [e for e in new if not any(
-            _sized(trial, k) and k not in beyond
-            and _apart(trial, k, EFFECTS[e].differs_from.get(k))
-            and not _placed(trial, k, EFFECTS[e].differs_from.get(k))
-            for k in EFFECTS[e].size_keys)]
-
     def judge(self, current: FitResult, trial: FitResult, heldout: bool = True) -> Verdict:
         """The verdict on ``trial`` (``current`` with one or two effects added); with
         ``heldout=False`` only the parts that need no refit (a screening)."""
@@ -139,8 +129,8 @@ class Judge:
             trial, keys, allowance.basis(trial.problem, before))
         twin = (twin_key, listing(before)) if twin_key else None
         beyond = beyond_data(trial, self.noise)
-        unshown = self._unshown(trial, new, beyond)
-        if unshown and unresolved_drop(trial, self.noise) is not None:
+        not_shown = unshown(trial, new, beyond)
+        if not_shown and unresolved_drop(trial, self.noise) is not None:
             # a drop the data do not resolve trades with the candidate's size (a curve
             # of δ → 0 placed far beyond the fastest speed bends like a viscous rise): no
             # drop, no Stribeck parameters (§7b, 5), so its size is read without it; the
@@ -148,13 +138,13 @@ class Judge:
             # final model without the drop: :func:`.drop.without_drop`)
             dropless = without_drop(trial)
             dropless_beyond = beyond_data(dropless, self.noise)
-            if not self._unshown(dropless, new, dropless_beyond):
-                unshown = []
-        if unshown:
-            keys = EFFECTS[unshown[0]].size_keys
-            differs = EFFECTS[unshown[0]].differs_from
+            if not unshown(dropless, new, dropless_beyond):
+                not_shown = []
+        if not_shown:
+            keys = EFFECTS[not_shown[0]].size_keys
+            differs = EFFECTS[not_shown[0]].differs_from
             return Verdict(f"the data do not determine its size ({', '.join(keys)}: "
-                           f"{_why(trial, keys, beyond, differs)})")
+                           f"{why_unshown(trial, keys, beyond, differs)})")
         # the allowance: the dependences the candidate leaves, fitted to what it leaves
         # and taken off both sides alike (the candidate is credited first)
         kept = tuple(v for v in allowance.structured_variables(
@@ -328,93 +318,6 @@ def _same_allowance(r0, r1, H, weights=None):
         coef, *_ = np.linalg.lstsq(H * root[:, None], r1 * root, rcond=None)
     taken = H @ coef
     return r0 - taken, r1 - taken
-
-
-def _sized(fit: FitResult, key: str) -> bool:
-    """Whether ``fit`` determines ``key`` as a size: by the report's rule, or tied only
-    through a correlation with another parameter (the data then determine a combination
-    of the two, and the effect's force is there: σ·v beside Fc on strokes of one speed)."""
-    if fit.determined.get(key):
-        return True
-    return (fit.assessment.why.get(key) or "").startswith("correlated:")
-
-
-#: A level of its own beside a base parameter shows an effect only where their
-#: difference lies more than this many standard errors from 0.
-DIFFERENCE_SIGMAS = 2.0
-
-
-def difference_stderr(fit: FitResult, key: str, base: str) -> float | None:
-    """The standard error of ``key − base`` in ``fit`` (None where ``key`` has none); a
-    base the fit holds or ties counts as exact."""
-    a = fit.assessment
-    se = fit.stderr.get(key)
-    if se is None:
-        return None
-    names = list(a.names)
-    se_base = fit.stderr.get(base) if base in names else None
-    if se_base is None or a.correlation is None:
-        return se
-    r = float(a.correlation[names.index(key), names.index(base)])
-    r = r if math.isfinite(r) else 0.0
-    return math.sqrt(max(se**2 + se_base**2 - 2.0 * r * se * se_base, 0.0))
-
-
-def _apart(fit: FitResult, key: str, base: str | None) -> bool:
-    """Whether ``key`` stands clear of ``base`` (:data:`DIFFERENCE_SIGMAS`): an
-    asymmetry whose negative Coulomb level is determined at the positive one's value
-    and whose other level is not determined shows no asymmetry. True without a base."""
-    if base is None:
-        return True
-    se = difference_stderr(fit, key, base)
-    gap = abs(fit.params[key] - fit.params[base])
-    return se is None or gap > DIFFERENCE_SIGMAS * se
-
-
-#: The Stribeck levels: the peak friction each direction shows where it breaks away.
-STRIBECK_LEVELS = ("Fs", "Fs_neg")
-
-
-def _placed(fit: FitResult, key: str, base: str | None) -> bool:
-    """Whether ``key``'s difference from ``base`` is one of place as much as of
-    direction: two Stribeck levels, where each direction breaks away at one place of
-    its own
-    (:meth:`~.models.timeseries.TimeseriesProblem.breakaways_apart`: a seal drawn end
-    to end, whose squeeze differs at the two ends)."""
-    return base is not None and key in STRIBECK_LEVELS and base in STRIBECK_LEVELS \
-        and fit.problem.breakaways_apart(fit.params)
-
-
-#: How a parameter came out not determined, in words.
-_WHY = {"at-bound": "on a bound of its range", "flat": "along a flat direction of the fit",
-        "relative": "a standard error larger than its value",
-        "artefact": "a standard error too small to be real"}
-
-
-def _why(fit: FitResult, keys, beyond, differs=None) -> str:
-    reasons = []
-    unit = fit.problem.data.unit("N")
-    for key in keys:
-        if key in beyond and fit.determined.get(key):
-            reasons.append(f"{key} describes a part of the curve the data never show")
-            continue
-        base = (differs or {}).get(key)
-        if base and _sized(fit, key) and not _apart(fit, key, base):
-            gap = fit.params[key] - fit.params[base]
-            reasons.append(f"{key} − {base} = {gap:.3g} {unit} ± "
-                           f"{difference_stderr(fit, key, base):.2g} {unit}, within "
-                           f"{DIFFERENCE_SIGMAS:g} standard errors of 0")
-            continue
-        if _sized(fit, key) and _placed(fit, key, base):
-            reasons.append(f"{key} and {base} are shown only where the two directions "
-                           f"break away, each at one place of its own (the ends of the "
-                           f"travel), so their difference may be one of position")
-            continue
-        why = fit.assessment.why.get(key) or ""
-        text = (f"tied to {why.split(':', 1)[1]}" if why.startswith("correlated:")
-                else _WHY.get(why, "not determined"))
-        reasons.append(f"{key} {text}")
-    return "; ".join(reasons)
 
 
 def listing(dependences) -> str:
