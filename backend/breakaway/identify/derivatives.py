@@ -40,7 +40,7 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
-from .encoder_edges import counts_held, encoder_velocity
+from .encoder_edges import chord_departure, counts_held, encoder_velocity
 from .local_fits import (ORDER, WINDOWS, _quadratic_at, _take_window, acceleration_bias,
                          acceleration_noise, adaptive_windows, choose_window, smooth_fit)
 
@@ -158,7 +158,11 @@ def velocity_spread(t, x, resolution: float = 0.0, error: float = 0.0,
     The straight line is exact where x is a quadratic over the window (a steady
     acceleration); where the speed changes otherwise (the end of a speed plateau beside
     a turn), its slope mixes both sides, and the cubic's third-order term measures by
-    how much. The counts' own error of v is what a re-reading of the record shows
+    how much. Read through an encoder's edges (``quantised``), the spread is at least
+    how far v departs from the chords' own reading of the speed
+    (:func:`~.encoder_edges.chord_departure`): a change of speed inside the counts,
+    which no window of the path through them bends at. The counts' own error of v is
+    what a re-reading of the record shows
     (:meth:`~.models.timeseries.TimeseriesProblem.resolution_errors`); this is the
     rest, an error of the model's input that goes through the model into each row's
     error (:meth:`~.models.timeseries.TimeseriesProblem.velocity_errors`).
@@ -168,8 +172,9 @@ def velocity_spread(t, x, resolution: float = 0.0, error: float = 0.0,
     if x.size < 5 or resolution <= 0:
         return np.zeros(x.size)
     if quantised:
-        return encoder_velocity(t, x, resolution, WINDOW_RESOLUTIONS, MAX_HALF_WINDOW,
-                                True, error)[2]
+        v, _, spread = encoder_velocity(t, x, resolution, WINDOW_RESOLUTIONS,
+                                        MAX_HALF_WINDOW, True, error)
+        return np.maximum(spread, chord_departure(t, x, v))
     return _adaptive_velocity(t, x, WINDOW_RESOLUTIONS * resolution, MAX_HALF_WINDOW,
                               True, error)[2]
 

@@ -7,8 +7,10 @@ counts themselves are only placed to within a count. :func:`through_edges` draws
 through them, and :func:`encoder_velocity` takes each sample's v as that path's slope
 over the widest centred window, from :data:`EDGE_RESOLUTIONS` counts up, over which it
 stays straight: a slow plateau on a coarse encoder is timed over all of it, and a window
-stops short of the turn beside it. :func:`counts_held` says whether a record's reading is
-such (:mod:`.derivatives` decides with it how v is taken).
+stops short of the turn beside it. :func:`chord_departure` says how far that v may lie
+from the speed where the speed changed inside the counts (the chords from edge to edge
+read it otherwise). :func:`counts_held` says whether a record's reading is such
+(:mod:`.derivatives` decides with it how v is taken).
 """
 
 from __future__ import annotations
@@ -55,11 +57,16 @@ def _edge_slope(before, after):
 
 
 @njit(cache=True)
-def _through_edges(t, x, quantum):
+def _edges(t, x):
+    """The times [s] and positions [m] of the crossings of an encoder's count
+    boundaries, and the reading after each (the count the body is in): where the reading
+    changes, at the middle of the two samples that show it. An encoder that flickers at
+    a boundary shows a burst of edges there: an odd number is one crossing, at their
+    mean time; an even number went in and came back."""
     n = x.size
     edge_t = np.empty(n)
     edge_x = np.empty(n)
-    inside = np.empty(n)  # the reading after each edge: the count the body is in
+    inside = np.empty(n)
     edges = 0
     for i in range(1, n):
         if x[i] != x[i - 1]:
@@ -67,11 +74,6 @@ def _through_edges(t, x, quantum):
             edge_x[edges] = 0.5 * (x[i - 1] + x[i])
             inside[edges] = x[i]
             edges += 1
-    path = x.copy()
-    if edges == 0:
-        return path
-    # an encoder that flickers at a boundary shows a burst of edges there: an odd number
-    # is one crossing, at their mean time; an even number went in and came back
     kept = 0
     first = 0
     while first < edges:
@@ -88,7 +90,17 @@ def _through_edges(t, x, quantum):
                 edge_t[kept], edge_x[kept], inside[kept] = edge_t[k], edge_x[k], inside[k]
                 kept += 1
         first = last + 1
-    edges = kept
+    return edge_t[:kept], edge_x[:kept], inside[:kept]
+
+
+@njit(cache=True)
+def _through_edges(t, x, quantum):
+    n = x.size
+    edge_t, edge_x, inside = _edges(t, x)
+    edges = edge_t.size
+    path = x.copy()
+    if edges == 0:
+        return path
     chords = np.zeros(max(edges - 1, 1))
     for k in range(edges - 1):
         chords[k] = (edge_x[k + 1] - edge_x[k]) / (edge_t[k + 1] - edge_t[k])
@@ -225,6 +237,39 @@ def encoder_velocity(t, x, quantum, max_counts, max_half, with_spread=False, err
                               with_spread, error)
 
 
+#: A chord between two edges is timed to within a sample at each end; v departs from
+#: the chords' reading by more than this many of their timing errors before the
+#: departure counts (:func:`chord_departure`).
+CHORD_ERRORS = 2.0
+
+
+def chord_departure(t, x, v) -> np.ndarray:
+    """How far each sample's v [m/s] departs from the chords of an encoder's counts
+    ``x`` [m] at times ``t`` [s]: a chord from edge to edge is the mean speed over its
+    count, the speed at its middle where the speed changes steadily, and between the
+    middles of two counts the speed runs along the line between their chords. Where v
+    and that reading of the same counts differ by more than :data:`CHORD_ERRORS` of
+    the chords' timing errors, the speed changed inside the counts in a way neither
+    resolves (the end of a plateau before a turn, a change of speed inside one count)
+    and v is uncertain by the difference. 0 on a plateau and under a steady
+    acceleration, where both readings agree."""
+    t = np.ascontiguousarray(t, dtype=float)
+    x = np.ascontiguousarray(x, dtype=float)
+    v = np.asanyarray(v, dtype=float)
+    edge_t, edge_x, _ = _edges(t, x)
+    if edge_t.size < 3:
+        return np.zeros(x.size)
+    step = float(np.median(np.diff(t)))
+    duration = np.diff(edge_t)
+    chords = np.diff(edge_x) / duration
+    # each edge is placed uniformly within its sample: std step/√12, two of them
+    errors = np.abs(chords) * step / (math.sqrt(6.0) * duration)
+    middles = 0.5 * (edge_t[1:] + edge_t[:-1])
+    reading = np.interp(t, middles, chords)
+    allowance = CHORD_ERRORS * np.interp(t, middles, errors)
+    return np.maximum(np.abs(v - reading) - allowance, 0.0)
+
+
 def counts_held(x, blocks, rest: int) -> bool:
     """Whether an encoder's reading holds its counts over several samples while the
     body moves: the median run of one count, rests (runs over ``rest`` samples) left
@@ -237,6 +282,8 @@ def counts_held(x, blocks, rest: int) -> bool:
     return moving.size > 0 and float(np.median(moving)) >= HELD_SAMPLES
 
 
-__all__ = ["DEPARTURE_SAMPLES", "EDGE_RESOLUTIONS", "HELD_SAMPLES", "MEASURE_RESOLUTIONS",
-           "STRAIGHT_ERRORS", "STRAIGHT_FLOOR", "counts_held", "encoder_velocity",
+__all__ = ["CHORD_ERRORS", "DEPARTURE_SAMPLES", "EDGE_RESOLUTIONS", "HELD_SAMPLES",
+           "MEASURE_RESOLUTIONS",
+           "STRAIGHT_ERRORS", "STRAIGHT_FLOOR", "chord_departure", "counts_held",
+           "encoder_velocity",
            "through_edges"]
