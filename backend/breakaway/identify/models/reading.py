@@ -12,6 +12,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..local_fits import smooth_fit
+from ..stops import stop_bounds
 
 #: Readings of the smoothed record that estimate what the resolution of x does.
 RESOLUTION_DRAWS = 4
@@ -107,21 +108,60 @@ class ReadingErrors:
         does not show. The difference between the model on the record's path and on one
         that turns at the start of each stop (:func:`..stops.find_stops`) and moves back
         through the stop's span (at least half a count), with the rows after it, which
-        re-engage from the turn back at the stop's end; never more than the measured
-        force says such a turn changed (:func:`..stops.stop_bounds`)."""
+        re-engage from the turn back at the stop's end. Where the reading leaves a
+        count back the way it came (:meth:`_turned_inside`), the path keeps moving back
+        after the stop for as long as the record's directions still wait for the
+        reversal hysteresis: a path turned back there that then followed the record's
+        old direction would turn twice. Never more than the measured force says such a
+        turn changed (:func:`..stops.stop_bounds`), over the stop and those rows."""
         if self.stop_rows(params) is None:
             return np.zeros(self.x.size)
         dither = np.zeros(self.x.size)
         directions = self.d.copy()
-        for a, b in self.stops:
+        spans = []
+        for (a, b), turned in zip(self.stops, self._turned_inside()):
             back = max(float(np.ptp(self.recorded_x[a:b])), 0.5 * self.quantum_x)
-            turned = -self.d[a]
-            dither[a:b] = turned * back * np.linspace(0.0, 1.0, b - a) \
+            dither[a:b] = -self.d[a] * back * np.linspace(0.0, 1.0, b - a) \
                 - (self.x[a:b] - self.x[a])
-            directions[a:b] = turned
+            directions[a:b] = -self.d[a]
+            if turned:
+                # the body left the count back the way it came: it moves so until the
+                # record's directions, which wait for the reversal hysteresis, turn too,
+                # along the record's path from where the turned one left the stop
+                moved = np.flatnonzero(self.d[b:turned] != self.d[a])
+                end = b + (int(moved[0]) if moved.size else turned - b)
+                directions[b:end] = -self.d[a]
+                dither[b:end] = (self.x[b - 1] + dither[b - 1] - self.x[b]) \
+                    * np.linspace(1.0, 0.0, end - b)
+                b = max(b, end)
+            spans.append((a, b))
         difference = np.abs(self.predict(params, dither, directions=directions)
                             - self.predict(params))
-        return np.minimum(difference, self.stop_bounds)
+        if spans == list(self.stops):
+            return np.minimum(difference, self.stop_bounds)
+        # the measured force bounds the turn over the rows the turned path differs in
+        return np.minimum(difference, stop_bounds(self.measured, spans))
+
+    def _turned_inside(self) -> list[int]:
+        """For each stop, where the reading holds one count and leaves it back to the
+        count it came from (the body turned inside it), the row up to which the record
+        may still wait to turn: the next stop's start, the end of the block, or where
+        the reading comes back into that count; 0 for the other stops."""
+        out = []
+        starts = [a for a, _ in self.stops[1:]] + [self.x.size]
+        for (a, b), following in zip(self.stops, starts):
+            first, stop = next((i, j) for i, j in self.blocks if i <= a < j)
+            inside = self.recorded_x[a:b]
+            turned = first < a and b < stop and float(np.ptp(inside)) == 0.0 \
+                and self.recorded_x[a - 1] == self.recorded_x[b]
+            if not turned:
+                out.append(0)
+                continue
+            # ... or where the reading comes back into that count
+            until = min(following, stop)
+            back_in = np.flatnonzero(self.recorded_x[b:until] == inside[0])
+            out.append(b + int(back_in[0]) if back_in.size else until)
+        return out
 
     def acceleration_errors(self, params) -> np.ndarray | None:
         """Each row's force error [N] where a jumps, which no reading at the record's
