@@ -434,3 +434,37 @@ def test_an_asymmetry_whose_drops_the_data_do_not_show_says_nothing_beyond_an_of
     assert beyond_nested("offset", "asymmetry", fit) is None
     del fit.params["Fs"]
     assert beyond_nested("asymmetry", "offset", fit).startswith("it has no Fs")
+
+
+def test_a_curve_that_no_longer_earns_its_place_leaves_its_straight_form_to_be_judged():
+    # the search took the curve σ·|v|ⁿ over the straight line in an early round (the
+    # line's verdict: "viscous-power describes the data better"); beside the effects
+    # that came after, the curve no longer earns its place. Dropping it would leave the
+    # rise the line had shown unnamed: the line is judged in its place, as an effect in
+    # a forward round is
+    data, truth = make_dataset("timeseries", ("offset", "viscous"), seed=2, n=6000)
+    curve = fit_model(data, ("offset", "viscous-power"), starts=[{**truth, "n": 1.0}])
+
+    def judging_out(names):
+        """A search whose judgement refuses ``names`` beside any model."""
+        search = Selection(data, NOISE["timeseries"], lambda fraction, message: None)
+        judge = search.judgement.judge
+
+        def judged(reduced, fit):
+            if (set(fit.effects) - set(reduced.effects)) & names:
+                return SimpleNamespace(reason="the BIC falls by 3, less than the 10 required")
+            return judge(reduced, fit)
+
+        search.judgement.judge = judged
+        return search
+
+    search = judging_out({"viscous-power"})
+    final, _ = search.backward(curve, search.heldout(curve))
+    assert set(final.effects) == {"offset", "viscous"}
+    assert final.params["sigma"] == pytest.approx(truth["sigma"], rel=0.05)
+    assert search.verdicts["viscous-power"].reason.startswith(
+        "named viscous, its special case: no longer earns its place beside offset")
+    # where the line does not earn its place either, the curve goes without it
+    search = judging_out({"viscous-power", "viscous"})
+    final, _ = search.backward(curve, search.heldout(curve))
+    assert final.effects == ("offset",)
