@@ -12,7 +12,6 @@ from __future__ import annotations
 import numpy as np
 
 from ..local_fits import smooth_fit
-from ..stops import stop_bounds
 
 #: Readings of the smoothed record that estimate what the resolution of x does.
 RESOLUTION_DRAWS = 4
@@ -105,17 +104,28 @@ class ReadingErrors:
         """Each row's force error [N] from turns the reading cannot see: a body that
         halts within a count (or within the reversal hysteresis) may turn there unseen,
         and its friction then runs down the presliding curve through what the record
-        does not show. The difference between the model on the record's path and on one
-        that turns at the start of each stop (:func:`..stops.find_stops`) and moves back
-        through the stop's span (at least half a count), with the rows after it, which
-        re-engage from the turn back at the stop's end. Where the reading leaves a
-        count back the way it came (:meth:`_turned_inside`), the path keeps moving back
-        after the stop for as long as the record's directions still wait for the
-        reversal hysteresis: a path turned back there that then followed the record's
-        old direction would turn twice. Never more than the measured force says such a
-        turn changed (:func:`..stops.stop_bounds`), over the stop and those rows."""
+        does not show. The difference between the model on the record's path and on the
+        path turned at each stop (:meth:`turned_path`), never more than the measured
+        force says such a turn changed (:func:`..stops.stop_bounds`, over the rows where
+        the two paths differ)."""
         if self.stop_rows(params) is None:
             return np.zeros(self.x.size)
+        dither, directions = self.stop_path
+        difference = np.abs(self.predict(params, dither, directions=directions)
+                            - self.predict(params))
+        return np.minimum(difference, self.stop_bounds)
+
+    def turned_path(self):
+        """The path that turns at the start of each stop (:func:`..stops.find_stops`)
+        and moves back through the stop's span (at least half a count), with the rows
+        after it, which re-engage from the turn back at the stop's end: the dither [m]
+        to the record's path, its directions, and the [start, stop) of the rows where
+        it departs from the record's. Where the reading leaves a count back the way it
+        came (:meth:`_turned_inside`), the path keeps moving back after the stop for as
+        long as the record's directions still wait for the reversal hysteresis: a path
+        turned back there that then followed the record's old direction would turn
+        twice. The record's alone (its stops, directions and path), so taken once with
+        its kinematics."""
         dither = np.zeros(self.x.size)
         directions = self.d.copy()
         spans = []
@@ -135,12 +145,7 @@ class ReadingErrors:
                     * np.linspace(1.0, 0.0, end - b)
                 b = max(b, end)
             spans.append((a, b))
-        difference = np.abs(self.predict(params, dither, directions=directions)
-                            - self.predict(params))
-        if spans == list(self.stops):
-            return np.minimum(difference, self.stop_bounds)
-        # the measured force bounds the turn over the rows the turned path differs in
-        return np.minimum(difference, stop_bounds(self.measured, spans))
+        return dither, directions, spans
 
     def _turned_inside(self) -> list[int]:
         """For each stop, where the reading holds one count and leaves it back to the

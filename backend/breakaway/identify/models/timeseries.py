@@ -101,13 +101,19 @@ class TimeseriesProblem(ReadingErrors, Problem):
             accel=_robust_scale(a),
             step=max(float(np.median(moving)) if moving.size else 1.0, self.quantum_x),
         )
-        #: the stretches where the body may have halted and turned unseen, and how far
-        #: the measured force bounds what such a turn changed
-        stops = find_stops(self.recorded_x, self.blocks, self.quantum_x, self.hysteresis)
+        #: the stretches where the body may have halted and turned unseen, a path turned
+        #: in each, and how far the measured force bounds what such a turn changed
+        self.stops = find_stops(self.recorded_x, self.blocks, self.quantum_x,
+                                self.hysteresis)
         self.d = self.kinematic_direction(self.x)
-        return {"quantum_x": self.quantum_x, "noise_x": self.noise_x, "stops": stops,
-                "stop_mask": stop_mask(self.x.size, stops),
-                "stop_bounds": stop_bounds(self.measured, stops),
+        path, bounds = None, None
+        if self.stops:
+            dither, directions, turned = self.turned_path()
+            dither.flags.writeable = directions.flags.writeable = False  # shared by fits
+            path, bounds = (dither, directions), stop_bounds(self.measured, turned)
+        return {"quantum_x": self.quantum_x, "noise_x": self.noise_x, "stops": self.stops,
+                "stop_mask": stop_mask(self.x.size, self.stops),
+                "stop_path": path, "stop_bounds": bounds,
                 "resolution_x": self.resolution_x, "hysteresis": self.hysteresis, "x": self.x,
                 "derivatives": self.derivatives, "v": v, "v_spread": v_spread,
                 "log_speed": log_speed, "a": a, "d": self.d,
