@@ -2,7 +2,8 @@
 holds the line σ·|v| at n = 1) fits at least as well as it, and so keeps its extra
 parameter only where the data ask for it — the exponent clearly not 1, the BIC and the
 held-out error preferring the curve, in the round it comes in and again beside every
-effect accepted after it.
+effect accepted after it; and a curve that no longer earns its place leaves its
+straight form to be judged in its place.
 
 :class:`NestedCurves` is the part of :class:`~.selection.Selection` that applies it."""
 
@@ -12,6 +13,7 @@ from .drop import level_on_bound
 from .effects import EFFECTS
 from .fitting import family, fit_model, weighted_rmse
 from .indistinguishable import power_is_preferred
+from .stability import unstable
 from .straight import straight_forms
 from .verdicts import Candidate, Step
 
@@ -86,6 +88,24 @@ class NestedCurves:
             self._name_straight(effect, current, line, why, line_heldout)
             return self.straighten(line, line_heldout)
         return current, current_heldout
+
+    def _straight_beside(self, current, effect, reduced):
+        """``current`` with the curve ``effect`` in its straight form, where that line
+        earns its place beside the rest of the model (``reduced``, the model without
+        the curve) as an effect does in a forward round, else None. A curve that no
+        longer earns its place leaves its special case to be judged: the line had been
+        set aside because the curve described the data better, and the curve is now
+        gone."""
+        if EFFECTS[effect].extends is None:
+            return None
+        straight = EFFECTS[effect].extends[0]
+        for curve, line in straight_forms(self.data, current):
+            if curve == effect and not level_on_bound(line) and \
+                    not EFFECTS[straight].unresolved(line.problem, line.params) and \
+                    self.judgement.judge(reduced, line).reason is None and \
+                    not unstable(self.data, line, straight):
+                return line
+        return None
 
     def _name_straight(self, effect, current, line, why, heldout):
         """Record that the model ``line`` names the curve ``effect`` of ``current`` in

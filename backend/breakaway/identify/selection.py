@@ -17,7 +17,6 @@ import numpy as np
 
 from .csvdata import Dataset
 from .curves import NestedCurves
-from .drop import level_on_bound
 from .effects import EFFECTS
 from .fitting import FitResult, best_base_starts, family, fit_model, fit_with_effect, refit
 from .indistinguishable import (
@@ -33,7 +32,6 @@ from .judgement import MIN_BIC_DROP, Judge
 from .residuals import is_white
 from .reweighing import Reweighing
 from .stability import unstable
-from .straight import straight_forms
 from .verdicts import Candidate, Step
 from .warnings.beyond_data import beyond_data
 
@@ -320,24 +318,6 @@ class Selection(NestedCurves, Reweighing):
                     changed = True
                     break
         return current, current_heldout
-
-    def _straight_beside(self, current, effect, reduced):
-        """``current`` with the curve ``effect`` in its straight form, where that line
-        earns its place beside the rest of the model (``reduced``, the model without
-        the curve) as an effect does in a forward round, else None. A curve that no
-        longer earns its place leaves its special case to be judged: the line had been
-        set aside because the curve described the data better, and the curve is now
-        gone."""
-        if EFFECTS[effect].extends is None:
-            return None
-        straight = EFFECTS[effect].extends[0]
-        for curve, line in straight_forms(self.data, current):
-            if curve == effect and not level_on_bound(line) and \
-                    not EFFECTS[straight].unresolved(line.problem, line.params) and \
-                    self.judgement.judge(reduced, line).reason is None and \
-                    not unstable(self.data, line, straight):
-                return line
-        return None
 
     def swap(self, current, current_heldout, available, only=None):
         """Swap an accepted effect for a rival (a candidate that came close to an
