@@ -193,7 +193,8 @@ def test_the_curvature_alone_is_the_local_fits_a_ends_included(window):
 
 def test_the_velocity_spread_is_nil_where_the_slope_holds_and_measures_a_turns_smear():
     # a body at -0.1 m/s turned to +0.1 m/s within 50 ms and held, read with 0.5 mm
-    # counts at 1 kHz: v is taken over some 40 samples, which beside the turn mix it in
+    # counts at 1 kHz: v is taken over 40 samples or more, which beside the turn mix
+    # it in (the steady speed is taken over windows widened to the whole straight run)
     count = 5e-4
     t = np.arange(3000) / RATE
     share = np.clip((t - 1.0) / 0.05 + 0.5, 0.0, 1.0)
@@ -201,19 +202,56 @@ def test_the_velocity_spread_is_nil_where_the_slope_holds_and_measures_a_turns_s
     x = np.concatenate([[0.0], np.cumsum(0.5 * (v_true[1:] + v_true[:-1]) * np.diff(t))])
     reading = np.round(x / count) * count
     error = count / math.sqrt(12)
-    v, spread = velocity(t, reading, count), velocity_spread(t, reading, count, error)
+    v = velocity(t, reading, count, widen=error)
+    spread = velocity_spread(t, reading, count, error, widen=error)
     steady = (t > 1.2) | (t < 0.9)
     beside = (t > 1.025) & (t < 1.06)
     # beside the turn v is off 4 times as far as where it holds ...
-    assert _rms(v[beside] - v_true[beside]) > 4 * _rms(v[steady] - v_true[steady])
-    # ... and the spread says so within 25 %, where the counts' own error, which a
-    # re-reading of the record shows, is taken off: nil where the speed holds
-    assert _rms(spread[beside]) == pytest.approx(_rms(v[beside] - v_true[beside]), rel=0.25)
-    assert _rms(spread[steady]) < 0.1 * _rms(v[steady] - v_true[steady])
+    off = _rms(v[beside] - v_true[beside])
+    assert off > 4 * _rms(v[steady] - v_true[steady])
+    # ... and the spread says so, at least as far and at most half as far again (the
+    # windows that reach towards the turn bend the cubic too), where the counts' own
+    # error, which a re-reading of the record shows, is taken off: nil where the speed
+    # holds
+    assert off <= _rms(spread[beside]) <= 1.5 * off
+    assert _rms(spread[steady]) < 0.02 * off
     # without taking the counts' error off, the cubic's larger scatter shows everywhere
-    assert _rms(velocity_spread(t, reading, count)[steady]) > _rms(v[steady] - v_true[steady])
+    unreduced = velocity_spread(t, reading, count, widen=error)
+    assert _rms(unreduced[steady]) > _rms(v[steady] - v_true[steady])
     # exact x is differentiated by numpy.gradient, not over windows: no spread
     assert not velocity_spread(t, x, 0.0).any()
+
+
+def _steady_strokes(seed):
+    """A carriage at a steady 5–30 mm/s for 0.5 s, turned through a raised cosine of
+    30–80 ms and back at the same speed, read by a 2–8 µm scale at 1 kHz at a random
+    phase: 1–15 counts a sample, so that the counts change on every sample and v is
+    taken over windows of the raw reading (not through edges)."""
+    rng = np.random.default_rng(seed)
+    t = np.arange(1200) / RATE
+    speed = rng.uniform(0.005, 0.03)
+    v_true = rigzoo.smooth_levels(t, [0.55], [speed, -speed], rng.uniform(0.03, 0.08))
+    x = rigzoo.integrate(t, v_true)
+    count = rng.uniform(2e-6, 8e-6)
+    return t, count * np.round(x / count + rng.uniform()), v_true, count
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_a_steady_speed_is_timed_over_all_of_its_straight_stretch(seed):
+    # the narrowest window over eight counts spans a few samples: a count more or less
+    # in it is an error of several per cent, held for tens of samples as the counts'
+    # phase drifts against the samples (a viscous rise read as a scatter of 0.35 N on a
+    # plateau of one speed). The window widens while its ends stay on its line
+    t, reading, v_true, count = _steady_strokes(seed)
+    v = velocity(t, reading, count, widen=count / math.sqrt(12))
+    plateau = (np.abs(t - 0.25) < 0.2) | (np.abs(t - 0.85) < 0.2)
+    assert np.max(np.abs(v[plateau] / v_true[plateau] - 1)) < 0.003
+    # the narrowest windows alone (none widened) are off by a per cent or more
+    narrowest = velocity(t, reading, count)
+    assert np.max(np.abs(narrowest[plateau] / v_true[plateau] - 1)) > 0.01
+    # and no wider where the speed turns: through the reversal v is as close as theirs
+    turn = np.abs(t - 0.55) < 0.1
+    assert _rms(v[turn] - v_true[turn]) < 1.1 * _rms(narrowest[turn] - v_true[turn])
 
 
 def _plateaus(count, rate=500.0, seed=0):

@@ -312,16 +312,47 @@ def test_an_asymmetry_whose_levels_do_not_stand_apart_is_not_named():
     assert r["final"]["params"]["Fc"] == pytest.approx(recording.truth["Fc"], rel=0.02)
 
 
+def _judging_out(data, names):
+    """A search of ``data`` whose judgement refuses the effects ``names`` beside any
+    model (and judges the rest as the search does)."""
+    search = Selection(data, NOISE["timeseries"], lambda fraction, message: None)
+    judge = search.judgement.judge
+
+    def judged(reduced, fit):
+        if (set(fit.effects) - set(reduced.effects)) & names:
+            return SimpleNamespace(reason="the BIC falls by 3, less than the 10 required")
+        return judge(reduced, fit)
+
+    search.judgement.judge = judged
+    return search
+
+
 def test_an_effect_that_no_longer_earns_its_place_beside_the_rest_is_dropped():
-    # a gearbox driven through speed plateaus: an asymmetry accepted against a model
-    # whose straight viscous term misfits each direction differently; beside the model
-    # the search ends with, its levels no longer stand apart, and it goes
+    # an effect accepted in an early round (an asymmetry, against a model whose straight
+    # viscous term misfit each direction differently) that beside the model the search
+    # ends with no longer passes the verdict goes, with its reason, though the BIC alone
+    # would keep it
+    data, truth = make_dataset("timeseries", ("viscous", "asymmetry"), seed=2, n=6000)
+    fit = fit_model(data, ("viscous", "asymmetry"), starts=[truth])
+    search = _judging_out(data, {"asymmetry"})
+    final, _ = search.backward(fit, search.heldout(fit))
+    assert final.effects == ("viscous",)
+    assert search.verdicts["asymmetry"].reason.startswith(
+        "no longer earns its place beside viscous: the BIC falls by 3")
+
+
+def test_a_gearbox_timed_over_its_plateaus_lets_no_asymmetry_in():
+    # a gearbox driven through speed plateaus on an encoder of a few counts a sample:
+    # over the narrowest windows of eight counts its plateaus' speeds scattered by a
+    # count in a few, the straight viscous term misfit each direction differently, and
+    # an asymmetry came in, to be dropped by the backward pass; timed over the plateaus,
+    # the asymmetry never earns its place
     from .rigzoo import families
 
     recording = families()["gearbox-timeseries"](2003)
     r = report(diagnose(parse_csv(recording.csv)))
     assert r["effects"] == ["viscous-power"]
-    assert r["candidates"]["asymmetry"]["reason"].startswith("no longer earns its place beside")
+    assert r["candidates"]["asymmetry"]["reason"].startswith("the BIC falls by")
     assert r["final"]["params"]["Fc"] == pytest.approx(recording.truth["Fc"], rel=0.02)
 
 
@@ -444,27 +475,13 @@ def test_a_curve_that_no_longer_earns_its_place_leaves_its_straight_form_to_be_j
     # a forward round is
     data, truth = make_dataset("timeseries", ("offset", "viscous"), seed=2, n=6000)
     curve = fit_model(data, ("offset", "viscous-power"), starts=[{**truth, "n": 1.0}])
-
-    def judging_out(names):
-        """A search whose judgement refuses ``names`` beside any model."""
-        search = Selection(data, NOISE["timeseries"], lambda fraction, message: None)
-        judge = search.judgement.judge
-
-        def judged(reduced, fit):
-            if (set(fit.effects) - set(reduced.effects)) & names:
-                return SimpleNamespace(reason="the BIC falls by 3, less than the 10 required")
-            return judge(reduced, fit)
-
-        search.judgement.judge = judged
-        return search
-
-    search = judging_out({"viscous-power"})
+    search = _judging_out(data, {"viscous-power"})
     final, _ = search.backward(curve, search.heldout(curve))
     assert set(final.effects) == {"offset", "viscous"}
     assert final.params["sigma"] == pytest.approx(truth["sigma"], rel=0.05)
     assert search.verdicts["viscous-power"].reason.startswith(
         "named viscous, its special case: no longer earns its place beside offset")
     # where the line does not earn its place either, the curve goes without it
-    search = judging_out({"viscous-power", "viscous"})
+    search = _judging_out(data, {"viscous-power", "viscous"})
     final, _ = search.backward(curve, search.heldout(curve))
     assert final.effects == ("offset",)

@@ -40,7 +40,7 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
-from .encoder_edges import chord_departure, counts_held, encoder_velocity
+from .encoder_edges import STRAIGHT_ERRORS, chord_departure, counts_held, encoder_velocity
 from .local_fits import (ORDER, WINDOWS, _quadratic_at, _take_window, acceleration_bias,
                          acceleration_noise, adaptive_windows, choose_window, smooth_fit)
 
@@ -51,7 +51,7 @@ MAX_HALF_WINDOW = 100
 
 
 @njit(cache=True)
-def _adaptive_velocity(t, x, span, max_half, with_spread, error):
+def _adaptive_velocity(t, x, span, max_half, with_spread, error, tolerance):
     n = x.size
     v = np.empty(n)
     duration = np.empty(n)
@@ -69,8 +69,49 @@ def _adaptive_velocity(t, x, span, max_half, with_spread, error):
             if high - low >= span or w >= max_half or (lo == 0 and hi == n - 1):
                 break
             w += 1
+        if high - low >= span and tolerance > 0.0:
+            lo, hi = _widened(t, x, i, lo, hi, max_half, tolerance)
         _take_window(t, x, i, lo, hi, v, duration, spread, with_spread, error)
     return v, duration, spread
+
+
+@njit(cache=True)
+def _widened(t, x, i, lo, hi, max_half, tolerance):
+    """The window [lo, hi] about sample ``i`` widened a sample a side at a time while
+    both new ends lie within ``tolerance`` [m] of the least-squares line through the
+    widened window (at most ``max_half`` samples a side)."""
+    n = x.size
+    count = st = sx = stt = stx = 0.0
+    for j in range(lo, hi + 1):
+        dt, dx = t[j] - t[i], x[j] - x[i]
+        count += 1.0
+        st += dt
+        sx += dx
+        stt += dt * dt
+        stx += dt * dx
+    while hi - i < max_half and i - lo < max_half and (lo > 0 or hi < n - 1):
+        new_lo, new_hi = max(lo - 1, 0), min(hi + 1, n - 1)
+        c, a, b, aa, ab = count, st, sx, stt, stx
+        for j in (new_lo, new_hi):
+            if j < lo or j > hi:
+                dt, dx = t[j] - t[i], x[j] - x[i]
+                c += 1.0
+                a += dt
+                b += dx
+                aa += dt * dt
+                ab += dt * dx
+        centred_tt = aa - a * a / c
+        if centred_tt <= 0.0:
+            break
+        slope = (ab - a * b / c) / centred_tt
+        mean_t, mean_x = a / c, b / c
+        departure = max(abs(x[new_lo] - x[i] - mean_x - slope * (t[new_lo] - t[i] - mean_t)),
+                        abs(x[new_hi] - x[i] - mean_x - slope * (t[new_hi] - t[i] - mean_t)))
+        if departure > tolerance:
+            break
+        count, st, sx, stt, stx = c, a, b, aa, ab
+        lo, hi = new_lo, new_hi
+    return lo, hi
 
 
 #: The position a model runs on is a local quadratic over the narrowest window over
@@ -118,7 +159,7 @@ def positions(t, x, resolution: float = 0.0):
                               MIN_POSITION_HALF_WINDOW, MAX_HALF_WINDOW)
 
 
-def velocity(t, x, resolution: float = 0.0, quantised: bool = False):
+def velocity(t, x, resolution: float = 0.0, quantised: bool = False, widen: float = 0.0):
     """Velocity of a position record [m/s].
 
     ``gradient(x, t)`` when x is exact (``resolution = 0``). For a noisy x, each
@@ -126,15 +167,24 @@ def velocity(t, x, resolution: float = 0.0, quantised: bool = False):
     at least :data:`WINDOW_RESOLUTIONS` resolutions (at most :data:`MAX_HALF_WINDOW`
     samples on each side): fast motion keeps its detail, slow motion is timed over
     several resolutions instead of showing one as a spike, and jitter at rest averages
-    out. For an encoder's counts held over several samples (``quantised``, steps of
-    ``resolution``: :func:`~.encoder_edges.counts_held`), the slope of the path through
-    their edges over the widest window of up to :data:`WINDOW_RESOLUTIONS` counts over
-    which that path stays straight (:func:`~.encoder_edges.encoder_velocity`).
+    out. With ``widen`` (an encoder's steps: the std of its reading's error [m],
+    :func:`position_error`) that window grows a sample a side at a time while both new
+    ends stay within :data:`~.encoder_edges.STRAIGHT_ERRORS` of those errors of the
+    widened window's line (:func:`_widened`): a steady speed is timed over the whole of
+    its straight run. Over the narrowest window alone a count more or less is an error
+    of several per cent, and as the counts' phase drifts against the samples it holds
+    for tens of samples, an error of the steady speed the fit reads as friction; a white
+    noise of x leaves no such error, and its windows are not widened. For an encoder's
+    counts held over several samples (``quantised``, steps of ``resolution``:
+    :func:`~.encoder_edges.counts_held`), the slope of the path through their edges over
+    the widest window of up to :data:`WINDOW_RESOLUTIONS` counts over which that path
+    stays straight (:func:`~.encoder_edges.encoder_velocity`).
     """
-    return velocity_and_span(t, x, resolution, quantised)[0]
+    return velocity_and_span(t, x, resolution, quantised, widen)[0]
 
 
-def velocity_and_span(t, x, resolution: float = 0.0, quantised: bool = False):
+def velocity_and_span(t, x, resolution: float = 0.0, quantised: bool = False,
+                      widen: float = 0.0):
     """:func:`velocity` [m/s] and the time each sample's velocity is taken over [s]
     (two samples' spacing for ``numpy.gradient``)."""
     t = np.ascontiguousarray(t, dtype=float)
@@ -144,11 +194,11 @@ def velocity_and_span(t, x, resolution: float = 0.0, quantised: bool = False):
     if quantised:
         return encoder_velocity(t, x, resolution, WINDOW_RESOLUTIONS, MAX_HALF_WINDOW)[:2]
     return _adaptive_velocity(t, x, WINDOW_RESOLUTIONS * resolution, MAX_HALF_WINDOW,
-                              False, 0.0)[:2]
+                              False, 0.0, STRAIGHT_ERRORS * widen)[:2]
 
 
 def velocity_spread(t, x, resolution: float = 0.0, error: float = 0.0,
-                    quantised: bool = False) -> np.ndarray:
+                    quantised: bool = False, widen: float = 0.0) -> np.ndarray:
     """How far :func:`velocity` [m/s] lies from the body's speed where the speed changes
     within its window: the difference between the window's straight-line slope and the
     slope at the sample of a cubic over the same window, less (in quadrature) what the
@@ -165,7 +215,8 @@ def velocity_spread(t, x, resolution: float = 0.0, error: float = 0.0,
     what a re-reading of the record shows
     (:meth:`~.models.timeseries.TimeseriesProblem.resolution_errors`); this is the
     rest, an error of the model's input that goes through the model into each row's
-    error (:meth:`~.models.timeseries.TimeseriesProblem.velocity_errors`).
+    error (:meth:`~.models.timeseries.TimeseriesProblem.velocity_errors`). ``widen``
+    as for :func:`velocity`, whose windows the spread is taken over.
     """
     t = np.ascontiguousarray(t, dtype=float)
     x = np.ascontiguousarray(x, dtype=float)
@@ -176,7 +227,7 @@ def velocity_spread(t, x, resolution: float = 0.0, error: float = 0.0,
                                         MAX_HALF_WINDOW, True, error)
         return np.maximum(spread, chord_departure(t, x, v))
     return _adaptive_velocity(t, x, WINDOW_RESOLUTIONS * resolution, MAX_HALF_WINDOW,
-                              True, error)[2]
+                              True, error, STRAIGHT_ERRORS * widen)[2]
 
 
 @dataclass(frozen=True)
@@ -202,6 +253,9 @@ class Derivatives:
     bias: np.ndarray | None = None
     #: whether v is read through an encoder's edges (:func:`~.encoder_edges.counts_held`)
     edges: bool = False
+    #: the std of an encoder's reading error [m] (:func:`position_error`) by which v's
+    #: windows widen at a steady speed (:func:`velocity`); 0 for exact or noisy x
+    step_error: float = 0.0
 
     @property
     def acceleration_resolved(self) -> bool:
@@ -242,9 +296,10 @@ def position_error(t, x, quantum: float = 0.0, noise: float = 0.0) -> float:
     return max(implied, seen)
 
 
-def block_velocity(t, x, resolution: float, blocks, quantised: bool = False) -> np.ndarray:
+def block_velocity(t, x, resolution: float, blocks, quantised: bool = False,
+                   widen: float = 0.0) -> np.ndarray:
     """:func:`velocity` of each independent block of a record [m/s]."""
-    return np.concatenate([velocity(t[i:j], x[i:j], resolution, quantised)
+    return np.concatenate([velocity(t[i:j], x[i:j], resolution, quantised, widen)
                            for i, j in blocks])
 
 
@@ -276,16 +331,16 @@ def derivatives(t, x, quantum: float = 0.0, noise: float = 0.0, blocks=None,
         v = np.concatenate([np.gradient(x[i:j], t[i:j]) for i, j in blocks])
         a = np.concatenate([np.gradient(v[i:j], t[i:j]) for i, j in blocks])
         return Derivatives(v, a, "gradient", 3, 2, _span(v, np.gradient(t) * 2.0))
-    if window is None:
-        first, last = max(blocks, key=lambda block: block[1] - block[0])
-        error = position_error(t[first:last], x[first:last], quantum, noise)
-        window = choose_window(t[first:last], x[first:last], error)
-    edges = quantum >= noise and counts_held(x, blocks, MAX_HALF_WINDOW)
-    parts = [velocity_and_span(t[i:j], x[i:j], resolution, edges) for i, j in blocks]
-    v = np.concatenate([part[0] for part in parts])
-    spans = np.concatenate([part[1] for part in parts])
     first, last = max(blocks, key=lambda block: block[1] - block[0])
     error = position_error(t[first:last], x[first:last], quantum, noise)
+    if window is None:
+        window = choose_window(t[first:last], x[first:last], error)
+    edges = quantum >= noise and counts_held(x, blocks, MAX_HALF_WINDOW)
+    # an encoder's steps: a steady speed is timed over all of its straight run
+    widen = error if 0 < quantum and noise <= quantum else 0.0
+    parts = [velocity_and_span(t[i:j], x[i:j], resolution, edges, widen) for i, j in blocks]
+    v = np.concatenate([part[0] for part in parts])
+    spans = np.concatenate([part[1] for part in parts])
     a, windows, bias = np.empty(x.size), np.full(x.size, 3), np.zeros(x.size)
     for i, j in blocks:
         if j - i >= WINDOWS[0]:
@@ -295,7 +350,7 @@ def derivatives(t, x, quantum: float = 0.0, noise: float = 0.0, blocks=None,
             a[i:j] = np.gradient(v[i:j], t[i:j])
     noise_a = acceleration_noise(window, error, float(np.median(np.diff(t[first:last]))))
     return Derivatives(v, a, "savgol", window, ORDER, _span(v, spans), noise_a, windows, bias,
-                       edges)
+                       edges, widen)
 
 
 def _span(v, spans) -> float:

@@ -87,7 +87,8 @@ class TimeseriesProblem(ReadingErrors, Problem):
         error = position_error(self.t, self.recorded_x, self.quantum_x, self.noise_x)
         v_spread = np.concatenate([velocity_spread(self.t[i:j], self.recorded_x[i:j],
                                                    self.resolution_x, error,
-                                                   self.derivatives.edges)
+                                                   self.derivatives.edges,
+                                                   self.derivatives.step_error)
                                    for i, j in self.blocks])
         with np.errstate(divide="ignore"):
             log_speed = np.log(np.abs(v))  # g's argument, reused by every evaluation
@@ -129,7 +130,7 @@ class TimeseriesProblem(ReadingErrors, Problem):
         """v of another position record of the same samples (the body behind a play, x
         dithered by its resolution), taken as the record's own v is."""
         return block_velocity(self.t, x, self.resolution_x, self.blocks,
-                              self.derivatives.edges)
+                              self.derivatives.edges, self.derivatives.step_error)
 
     def kinematic_acceleration(self, x):
         """a of another position record of the same samples, taken as the record's own
