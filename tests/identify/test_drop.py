@@ -187,3 +187,43 @@ def test_a_drop_and_a_line_must_lower_the_bic_by_10_against_the_curve(Fs, points
         assert judge.needs_drop(curve, trial).startswith("the RMSE falls by only")
     else:
         assert reason.startswith("against the curve without a drop the BIC falls by")
+
+
+def _turned_up(seed):
+    """A steady curve that falls from 21.77 N at rest by 0.54 N (four noise floors of
+    0.14 N) to its lowest at 3.7 mm/s and rises with σ = 434 N·s/m to 22.3 N at the
+    fastest speed, 10 mm/s: its Coulomb level, 17.08 N, is where the drop would level
+    off, at speeds the rise never lets it reach."""
+    return _steady(17.08, 21.77, 0.006, 1.0, sigma=434.0, noise=0.14, seed=seed,
+                   speeds=np.geomspace(3e-4, 0.0101, 30))
+
+
+@pytest.mark.parametrize("seed", [1, 2])
+def test_a_drop_whose_coulomb_level_lies_beyond_the_curves_turn_is_kept(seed):
+    # the gap Fs − Fc trades with σ and V: its error is as long as itself, and the
+    # gap alone calls it no drop (Fc would be the level at rest, 21.5 N, and the rise,
+    # 0.5 N above it, too small for a viscous term). The fall the data show stands
+    # clear, the level at rest is determined, and the drop earns its parameters
+    # beside the model without it: it is kept, Fc from it
+    data = _turned_up(seed)
+    truth = {"Fc": 17.08, "Fs": 21.77, "V": 0.006, "delta": 1.0, "sigma": 434.0}
+    fit = fit_model(data, ("viscous",), starts=[truth])
+    assert "standard errors of no drop" in unresolved_drop(fit, 0.14)
+    report = identify(data)
+    assert report["effects"] == ["viscous"]
+    params = report["final"]["params"]
+    assert params["Fs"] == pytest.approx(21.77, rel=0.01)
+    assert params["Fc"] == pytest.approx(17.08, rel=0.05)
+    assert params["sigma"] == pytest.approx(434.0, rel=0.1)
+
+
+def test_a_gap_within_its_errors_stays_no_drop_where_the_drops_speed_is_beyond_the_data():
+    # the same curve on another seed: the fit puts V at 41 mm/s, beyond the fastest
+    # speed (10 mm/s), and Fc at 0; that such a drop would earn its parameters does not
+    # make it one the data show
+    data = _turned_up(0)
+    fit = fit_model(data, ("viscous",), starts=[{"Fc": 17.08, "Fs": 21.77, "V": 0.006,
+                                                 "delta": 1.0, "sigma": 434.0}])
+    assert fit.params["V"] > 0.04 and fit.params["Fc"] < 0.1
+    assert "standard errors of no drop" in unresolved_drop(fit, 0.14,
+                                                           earns=lambda without, with_: None)

@@ -178,7 +178,7 @@ def _diagnose(data: Dataset, progress, set_aside: SetAside | None = None,
     heldout_before = search.heldout_base
     # the search keeps the drop, which a missing effect can distort into an unresolved
     # one; the chosen model's drop is judged
-    dropless = unresolved_drop(current, noise.value)
+    dropless = unresolved_drop(current, noise.value, earns=search.judgement.needs_drop)
     if dropless:
         # the model without it, with the effects it still needs, and the base model as
         # reported in the same family, so that the errors before and after compare

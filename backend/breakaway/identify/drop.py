@@ -84,11 +84,21 @@ def _shown_fall(problem, params: dict, slowest: float, fastest: float) -> float:
     return max(falls, default=0.0)
 
 
-def unresolved_drop(fit: FitResult, noise: float, bends: bool = True) -> str | None:
+def unresolved_drop(fit: FitResult, noise: float, bends: bool = True,
+                    earns=None) -> str | None:
     """Why the data do not resolve ``fit``'s Stribeck drop (None: they do, or the
     model has no drop to judge: tied levels, a level-only fit, a record that never
     slides); with ``bends=False``, a drop that only bends a rising curve passes (its
-    case is then the judgement's: :func:`retried_drop`)."""
+    case is then the judgement's: :func:`retried_drop`).
+
+    A gap Fs − Fc within its standard errors is no drop unless the data show where the
+    drop starts and how fast it falls (:func:`_drop_shown`) and it earns its parameters
+    beside the model without it: ``earns(without, fit)``, None where it does (with
+    ``bends=False`` that is the judgement's to say afterwards). The gap is the drop's
+    asymptote: where the viscous rise turns the curve up before the drop levels off,
+    its error runs along the trade with σ and V while the fall the data show stands
+    clear (a short record's drop fitted at the truth, Fs − Fc = 5.99 ± 4.2 N, its curve
+    falling by 0.54 N, four noise floors)."""
     problem, p = fit.problem, fit.params
     if problem.tied or "V" not in problem.names or "delta" not in problem.names:
         return None
@@ -102,7 +112,9 @@ def unresolved_drop(fit: FitResult, noise: float, bends: bool = True) -> str | N
         if level in p:
             gap, se = p[level] - p[low], (a.gap_stderr or {}).get(level)
             gaps.append((level, low, gap, se))
-    if all(se is not None and gap <= GAP_SIGMAS * se for _, _, gap, se in gaps):
+    if all(se is not None and gap <= GAP_SIGMAS * se for _, _, gap, se in gaps) and not (
+            _drop_shown(fit, [level for level, _, _, _ in gaps], speeds)
+            and (not bends or (earns is not None and earns(without_drop(fit), fit) is None))):
         level, low, gap, se = gaps[0]
         return (f"{level} − {low} = {gap:.3g} {unit} ± {se:.2g} {unit} is within "
                 f"{GAP_SIGMAS:g} standard errors of no drop")
@@ -127,6 +139,15 @@ def unresolved_drop(fit: FitResult, noise: float, bends: bool = True) -> str | N
                     f"fall is {fall:.3g} {unit}, within {FALL_NOISE:g} noise floors): "
                     f"the drop only bends the rise of the curve")
     return None
+
+
+def _drop_shown(fit: FitResult, levels, speeds) -> bool:
+    """Whether the data show where ``fit``'s drop starts and how fast it falls: each
+    Stribeck level of ``levels`` (the force at rest) determined, V within the speeds the
+    data show the curve at (``speeds``), no Coulomb level on its bound. Only where the
+    drop would level off may then trade with the rest."""
+    return not level_on_bound(fit) and fit.params["V"] <= float(np.max(speeds)) \
+        and all(fit.determined.get(level) for level in levels)
 
 
 def retried_drop(fit: FitResult, noise: float) -> tuple[FitResult, FitResult] | None:
