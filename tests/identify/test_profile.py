@@ -135,3 +135,19 @@ def test_under_mains_hum_a_correlated_pair_is_checked_along_its_profile():
         assert abs(final["params"][name] - recording.truth[name]) < 2 * final["stderr"][name]
     assert final["stderr"]["Fc"] < 0.05 * recording.truth["Fc"]
     assert final["stderr"]["sigma"] < 0.2 * recording.truth["sigma"]
+
+
+def test_a_profile_whose_valley_runs_a_log_scaled_parameter_through_zero_starts_it_in_range():
+    # held at Fc ± 2·SE, the valley's straight line (each parameter's regression on the
+    # one held) can take a positive parameter below zero: it starts where the fit left
+    # it, not at a value that predicts nothing (a profile that cannot start would rise
+    # by nothing, and the parameter is never confirmed)
+    from breakaway.identify.profile import _profile_rise
+
+    fit = _gearbox_curve(1, 0.5, 4.0)
+    held = fit.params["Fc"] * 1.05
+    far = {"V": -2.0 * fit.params["V"] / (held - fit.params["Fc"])}
+    assert fit.problem.is_log("V")
+    with np.errstate(invalid="raise", divide="raise"):
+        rise = _profile_rise(fit, "Fc", held, far, fit.weighted_rss)
+    assert rise > 0.0

@@ -76,6 +76,10 @@ def _profile_rise(fit: FitResult, name: str, held: float, slopes: dict, rss: flo
     problem = fit.problem
     shift = held - fit.params[name]
     start = {key: value + slopes.get(key, 0.0) * shift for key, value in fit.params.items()}
+    # a parameter on a log scale that the valley's line takes through zero (a drop's V
+    # whose error is as long as it) starts where the fit left it
+    start = {key: fit.params[key] if problem.is_log(key) and not value > 0 else value
+             for key, value in start.items()}
     start[name] = held
     # a Coulomb level tied to the level held (no drop) is held with it
     held_too = {low: held for low, level in problem.tied.items() if level == name}
