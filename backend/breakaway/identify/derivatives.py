@@ -11,7 +11,9 @@ Every kind and effect that needs v or a takes them from here.
   - v is each sample's least-squares slope over the narrowest centred window over
     which x spans :data:`WINDOW_RESOLUTIONS` resolutions (:func:`velocity`): fast motion
     keeps its detail (a reversal, the presliding that follows), slow motion is timed
-    over several counts instead of showing one count as a spike. An encoder that holds
+    over several counts instead of showing one count as a spike, and on an encoder's
+    steps the window widens for as long as x stays on its line (a steady speed is timed
+    over the whole of its straight run). An encoder that holds
     its counts over several samples while the body moves is read as the path through
     its edges instead (:mod:`.encoder_edges`: the body crossed a count boundary between
     the two samples that show the change), which is exact to within a sample's travel,
