@@ -85,23 +85,13 @@ def _widened(t, x, i, lo, hi, max_half, tolerance):
     n = x.size
     count = st = sx = stt = stx = 0.0
     for j in range(lo, hi + 1):
-        dt, dx = t[j] - t[i], x[j] - x[i]
-        count += 1.0
-        st += dt
-        sx += dx
-        stt += dt * dt
-        stx += dt * dx
+        count, st, sx, stt, stx = _with_sample(t, x, i, j, count, st, sx, stt, stx)
     while hi - i < max_half and i - lo < max_half and (lo > 0 or hi < n - 1):
         new_lo, new_hi = max(lo - 1, 0), min(hi + 1, n - 1)
         c, a, b, aa, ab = count, st, sx, stt, stx
         for j in (new_lo, new_hi):
             if j < lo or j > hi:
-                dt, dx = t[j] - t[i], x[j] - x[i]
-                c += 1.0
-                a += dt
-                b += dx
-                aa += dt * dt
-                ab += dt * dx
+                c, a, b, aa, ab = _with_sample(t, x, i, j, c, a, b, aa, ab)
         centred_tt = aa - a * a / c
         if centred_tt <= 0.0:
             break
@@ -114,6 +104,13 @@ def _widened(t, x, i, lo, hi, max_half, tolerance):
         count, st, sx, stt, stx = c, a, b, aa, ab
         lo, hi = new_lo, new_hi
     return lo, hi
+
+
+@njit(cache=True)
+def _with_sample(t, x, i, j, count, st, sx, stt, stx):
+    """The sums of a line's fit about sample ``i`` with sample ``j`` added."""
+    dt, dx = t[j] - t[i], x[j] - x[i]
+    return count + 1.0, st + dt, sx + dx, stt + dt * dt, stx + dt * dx
 
 
 #: The position a model runs on is a local quadratic over the narrowest window over
