@@ -8,7 +8,8 @@ import numpy as np
 import pytest
 
 from breakaway.identify.derivatives import (MAX_HALF_WINDOW, WINDOW_RESOLUTIONS, derivatives,
-                                           velocity, velocity_spread)
+                                           velocity, velocity_and_reach, velocity_and_span,
+                                           velocity_at, velocity_spread)
 from breakaway.identify.encoder_edges import chord_departure, encoder_velocity, through_edges
 from breakaway.identify.local_fits import (AGREEMENT, NOISE_TO_SIGNAL, WINDOWS, acceleration_noise,
                                            choose_window, local_fit, smooth_fit)
@@ -252,6 +253,30 @@ def test_a_steady_speed_is_timed_over_all_of_its_straight_stretch(seed):
     # and no wider where the speed turns: through the reversal v is as close as theirs
     turn = np.abs(t - 0.55) < 0.1
     assert _rms(v[turn] - v_true[turn]) < 1.1 * _rms(narrowest[turn] - v_true[turn])
+
+
+@pytest.mark.parametrize("seed", [0, 1])
+def test_a_velocity_taken_again_at_some_rows_is_the_velocity_there(seed):
+    # each sample's window reads only its reach: a record changed outside it keeps the
+    # sample's v, and the rows taken again are the velocity's own
+    t, reading, _, count = _steady_strokes(seed)
+    error = count / math.sqrt(12)
+    v, reach = velocity_and_reach(t, reading, count, error)
+    np.testing.assert_array_equal(v, velocity(t, reading, count, widen=error))
+    _, spans = velocity_and_span(t, reading, count, widen=error)
+    read = (reach[:, 1] - reach[:, 0]) * 1e-3  # at 1 kHz
+    assert np.all(read >= spans - 1e-9) and np.all(read <= spans + 2e-3 + 1e-9)
+    # the record raised by 0.1 mm from the turn on: the rows whose reach holds the step
+    # are taken again, the rest kept
+    raised = reading + np.where(t >= 0.55, 1e-4, 0.0)
+    step = np.searchsorted(t, 0.55)
+    rows = np.flatnonzero((reach[:, 0] < step) & (reach[:, 1] >= step))
+    assert 0 < rows.size < 250
+    again = velocity_at(t, raised, count, rows, v, error)
+    np.testing.assert_allclose(again, velocity(t, raised, count, widen=error),
+                               rtol=1e-12, atol=1e-12 * float(np.max(np.abs(v))))
+    # where the step is read, v is not what the unraised record gave
+    assert np.max(np.abs(again[rows] - v[rows])) > 0.1 * float(np.max(np.abs(v)))
 
 
 def _plateaus(count, rate=500.0, seed=0):

@@ -4,6 +4,7 @@ model, and the base model of each kind is the model core's function."""
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -13,6 +14,7 @@ from breakaway.identify.effects import lag_filter, play_operator
 from breakaway.identify.fitting import fit_model
 from breakaway.identify.input_error import input_weights
 from breakaway.identify.models import problem_for as Problem
+from breakaway.identify.models import with_forces
 from breakaway.identify.synthetic import BASE_TRUTH, make_dataset
 from breakaway.presliding import presliding_force
 from breakaway.quasistatic import breakaway_force, presliding_velocity
@@ -98,6 +100,23 @@ def test_play_operator_keeps_the_body_within_half_the_play():
     assert not engaged[51:70].any()
 
 
+@pytest.mark.parametrize("count, blocks", [(1e-6, None), (3e-6, [1000, 1500])])
+def test_the_body_behind_a_play_is_timed_as_any_position_record(count, blocks):
+    # v of the body is taken again only where a window reads a change of the play's
+    # edge; everywhere else it is the model positions' v, which an offset leaves alone
+    data, _ = make_dataset("timeseries", ("backlash",), seed=1, n=3000)
+    read = count * np.round(data.columns["x"] / count)
+    data = replace(data, columns={**data.columns, "x": read},
+                   segments=blocks or data.segments)
+    problem = Problem(data, ("backlash",))
+    assert not problem.derivatives.edges and problem.resolution_x == pytest.approx(count)
+    for play in (1e-5, 1e-4, 1e-3):
+        body, engaged = play_operator(problem.x, play)
+        whole = problem.kinematic_velocity(body)
+        np.testing.assert_allclose(problem.body_velocity(body, engaged), whole, rtol=1e-12,
+                                   atol=1e-12 * float(np.max(np.abs(whole))))
+
+
 def test_lag_filter_is_a_first_order_lag():
     t = np.linspace(0, 1, 1001)
     v = np.ones_like(t)
@@ -175,6 +194,26 @@ def _turns_between_plateaus(seed):
     reading = count * np.floor(x / count + rng.uniform())
     F = friction + 0.01 * rng.standard_normal(t.size)
     return cases.dataset("timeseries", {"t": t, "x": reading, "F": F}), truth, friction
+
+
+def test_a_record_with_other_forces_shares_what_its_motion_sets():
+    # a record whose spikes were mended differs only in F: its v, stops and re-readings
+    # of x are the record's, its scales and the bounds its forces set are its own
+    data, truth, _ = _turns_between_plateaus(2)
+    params = {k: v for k, v in truth.items() if k != "sigma"}
+    first = Problem(data)
+    first.resolution_errors(params)
+    mended = with_forces(data, 2.0 * data.columns["F"])
+    second = Problem(mended)
+    assert second.derivatives is first.derivatives and second.stops == first.stops
+    assert second.scales.force == pytest.approx(2.0 * first.scales.force)
+    # the re-readings kept from the first (not drawn again) give what a fresh record's
+    # give
+    errors = second.resolution_errors(params)
+    fresh = Problem(replace(mended, columns=dict(mended.columns)))
+    assert fresh.derivatives is not first.derivatives
+    np.testing.assert_allclose(fresh.resolution_errors(params), errors, rtol=1e-9, atol=1e-12)
+    assert np.sqrt(np.mean(errors**2)) > 0.01  # the reading sets an error to compare
 
 
 @pytest.mark.parametrize("seed", [2, 41])

@@ -50,6 +50,8 @@ from .local_fits import (ORDER, WINDOWS, _quadratic_at, _take_window, accelerati
 WINDOW_RESOLUTIONS = 8
 #: ... and at most this many samples on each side.
 MAX_HALF_WINDOW = 100
+#: A record of fewer samples has its v by ``numpy.gradient``.
+SHORTEST_WINDOWED = 5
 
 
 @njit(cache=True)
@@ -59,29 +61,55 @@ def _adaptive_velocity(t, x, span, max_half, with_spread, error, tolerance):
     duration = np.empty(n)
     spread = np.zeros(n if with_spread else 0)
     for i in range(n):
-        w = 1
-        low = high = x[i]
-        while True:
-            lo = max(i - w, 0)
-            hi = min(i + w, n - 1)
-            # the range the window covers, not its ends' difference: at a turn the two
-            # ends sit at the same height while the body has moved
-            low = min(low, x[lo], x[hi])
-            high = max(high, x[lo], x[hi])
-            if high - low >= span or w >= max_half or (lo == 0 and hi == n - 1):
-                break
-            w += 1
-        if high - low >= span and tolerance > 0.0:
-            lo, hi = _widened(t, x, i, lo, hi, max_half, tolerance)
-        _take_window(t, x, i, lo, hi, v, duration, spread, with_spread, error)
+        lo, hi, slope = _window(t, x, i, span, max_half, tolerance)
+        _take_window(t, x, i, lo, hi, v, duration, spread, with_spread, error, slope)
     return v, duration, spread
+
+
+@njit(cache=True)
+def _velocity_at(t, x, span, max_half, tolerance, rows, v, reach):
+    """``v`` [m/s] at ``rows`` taken as :func:`_adaptive_velocity` takes it, and each
+    such row's ``reach``: the first and last sample its window read (one more a side
+    than the window: the narrowest window's search and the widening stop there)."""
+    n = x.size
+    duration = np.empty(n)
+    spread = np.zeros(0)
+    for i in rows:
+        lo, hi, slope = _window(t, x, i, span, max_half, tolerance)
+        _take_window(t, x, i, lo, hi, v, duration, spread, False, 0.0, slope)
+        reach[i, 0] = max(lo - 1, 0)
+        reach[i, 1] = min(hi + 1, n - 1)
+
+
+@njit(cache=True)
+def _window(t, x, i, span, max_half, tolerance):
+    """Sample ``i``'s window [lo, hi]: the narrowest centred one over which x spans
+    ``span`` (at most ``max_half`` samples a side), widened (``tolerance`` > 0) while x
+    stays on its line (:func:`_widened`), and x's slope over it where the widening
+    found it (NaN otherwise)."""
+    n = x.size
+    w = 1
+    low = high = x[i]
+    while True:
+        lo = max(i - w, 0)
+        hi = min(i + w, n - 1)
+        # the range the window covers, not its ends' difference: at a turn the two
+        # ends sit at the same height while the body has moved
+        low = min(low, x[lo], x[hi])
+        high = max(high, x[lo], x[hi])
+        if high - low >= span or w >= max_half or (lo == 0 and hi == n - 1):
+            break
+        w += 1
+    if high - low >= span and tolerance > 0.0:
+        return _widened(t, x, i, lo, hi, max_half, tolerance)
+    return lo, hi, np.nan
 
 
 @njit(cache=True)
 def _widened(t, x, i, lo, hi, max_half, tolerance):
     """The window [lo, hi] about sample ``i`` widened a sample a side at a time while
     both new ends lie within ``tolerance`` [m] of the least-squares line through the
-    widened window (at most ``max_half`` samples a side)."""
+    widened window (at most ``max_half`` samples a side), and x's slope over it."""
     n = x.size
     count = st = sx = stt = stx = 0.0
     for j in range(lo, hi + 1):
@@ -92,18 +120,26 @@ def _widened(t, x, i, lo, hi, max_half, tolerance):
         for j in (new_lo, new_hi):
             if j < lo or j > hi:
                 c, a, b, aa, ab = _with_sample(t, x, i, j, c, a, b, aa, ab)
-        centred_tt = aa - a * a / c
-        if centred_tt <= 0.0:
+        # an end's departure from the line times c·D, where D = c·Σt² − (Σt)² and the
+        # line's slope is (c·Σtx − Σt·Σx)/D: the test without a division per step
+        spread_t = c * aa - a * a
+        if spread_t <= 0.0:
             break
-        slope = (ab - a * b / c) / centred_tt
-        mean_t, mean_x = a / c, b / c
-        departure = max(abs(x[new_lo] - x[i] - mean_x - slope * (t[new_lo] - t[i] - mean_t)),
-                        abs(x[new_hi] - x[i] - mean_x - slope * (t[new_hi] - t[i] - mean_t)))
-        if departure > tolerance:
+        rise = c * ab - a * b
+        departure = max(_scaled_departure(t, x, i, new_lo, c, a, b, spread_t, rise),
+                        _scaled_departure(t, x, i, new_hi, c, a, b, spread_t, rise))
+        if departure > tolerance * c * spread_t:
             break
         count, st, sx, stt, stx = c, a, b, aa, ab
         lo, hi = new_lo, new_hi
-    return lo, hi
+    spread_t = count * stt - st * st
+    return lo, hi, (count * stx - st * sx) / spread_t if spread_t > 0.0 else np.nan
+
+
+@njit(cache=True)
+def _scaled_departure(t, x, i, j, count, st, sx, spread_t, rise):
+    """|x_j − the line of the window's sums| times ``count``·``spread_t``."""
+    return abs((count * (x[j] - x[i]) - sx) * spread_t - rise * (count * (t[j] - t[i]) - st))
 
 
 @njit(cache=True)
@@ -188,12 +224,37 @@ def velocity_and_span(t, x, resolution: float = 0.0, quantised: bool = False,
     (two samples' spacing for ``numpy.gradient``)."""
     t = np.ascontiguousarray(t, dtype=float)
     x = np.ascontiguousarray(x, dtype=float)
-    if x.size < 5 or resolution <= 0:
+    if x.size < SHORTEST_WINDOWED or resolution <= 0:
         return np.gradient(x, t), np.gradient(t) * 2.0
     if quantised:
         return encoder_velocity(t, x, resolution, WINDOW_RESOLUTIONS, MAX_HALF_WINDOW)[:2]
     return _adaptive_velocity(t, x, WINDOW_RESOLUTIONS * resolution, MAX_HALF_WINDOW,
                               False, 0.0, STRAIGHT_ERRORS * widen)[:2]
+
+
+def velocity_and_reach(t, x, resolution: float, widen: float = 0.0):
+    """:func:`velocity` [m/s] of a record whose v is taken over adaptive windows (x
+    neither exact nor read through an encoder's edges, at least 5 samples), and each
+    sample's reach: the first and last sample that its window read, shape (n, 2)."""
+    t = np.ascontiguousarray(t, dtype=float)
+    x = np.ascontiguousarray(x, dtype=float)
+    v = np.empty(x.size)
+    reach = np.empty((x.size, 2), dtype=np.int64)
+    _velocity_at(t, x, WINDOW_RESOLUTIONS * resolution, MAX_HALF_WINDOW,
+                 STRAIGHT_ERRORS * widen, np.arange(x.size), v, reach)
+    return v, reach
+
+
+def velocity_at(t, x, resolution: float, rows, known, widen: float = 0.0) -> np.ndarray:
+    """:func:`velocity` [m/s] of such a record at ``rows``, ``known`` elsewhere (where
+    each sample's window reads what it read on a record whose v is ``known``)."""
+    t = np.ascontiguousarray(t, dtype=float)
+    x = np.ascontiguousarray(x, dtype=float)
+    v = np.array(known, dtype=float)
+    _velocity_at(t, x, WINDOW_RESOLUTIONS * resolution, MAX_HALF_WINDOW,
+                 STRAIGHT_ERRORS * widen, np.asarray(rows, dtype=np.int64), v,
+                 np.empty((x.size, 2), dtype=np.int64))
+    return v
 
 
 def velocity_spread(t, x, resolution: float = 0.0, error: float = 0.0,
@@ -219,7 +280,7 @@ def velocity_spread(t, x, resolution: float = 0.0, error: float = 0.0,
     """
     t = np.ascontiguousarray(t, dtype=float)
     x = np.ascontiguousarray(x, dtype=float)
-    if x.size < 5 or resolution <= 0:
+    if x.size < SHORTEST_WINDOWED or resolution <= 0:
         return np.zeros(x.size)
     if quantised:
         v, _, spread = encoder_velocity(t, x, resolution, WINDOW_RESOLUTIONS,
@@ -361,6 +422,6 @@ def _span(v, spans) -> float:
     return float(np.median(spans[moving & (speed <= np.median(speed[moving]))]))
 
 
-__all__ = ["Derivatives", "MAX_HALF_WINDOW", "POSITION_RESOLUTIONS", "WINDOW_RESOLUTIONS",
-           "block_velocity", "derivatives", "position_error", "positions", "velocity",
-           "velocity_and_span", "velocity_spread"]
+__all__ = ["Derivatives", "MAX_HALF_WINDOW", "POSITION_RESOLUTIONS", "SHORTEST_WINDOWED",
+           "WINDOW_RESOLUTIONS", "block_velocity", "derivatives", "position_error", "positions", "velocity",
+           "velocity_and_reach", "velocity_and_span", "velocity_at", "velocity_spread"]

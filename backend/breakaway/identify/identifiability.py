@@ -102,12 +102,14 @@ def block_covariance(J, residual, order=None) -> np.ndarray:
     J = np.asarray(J, dtype=float)
     r = np.asarray(residual, dtype=float)
     if order is not None:
-        J, r = J[order], r[order]
+        r = r[order]
     n = r.size
     length = int(np.clip(correlation_time(r), 1, max(1, int(MAX_BLOCK_SHARE * n))))
-    blocks = np.arange(n) // length
-    scores = np.zeros((int(blocks[-1]) + 1, J.shape[1]))
-    np.add.at(scores, blocks, J * r[:, None])
+    starts = np.arange(0, n, length)
+    # a column at a time: a long record's n×p products would each be another copy of J
+    scores = np.column_stack([
+        np.add.reduceat((column if order is None else column[order]) * r, starts)
+        for column in J.T])
     return scores.T @ scores
 
 
@@ -162,7 +164,7 @@ def assess(problem, theta, jac, cost, n, active_mask=None, residual=None,
 
     J = np.asarray(jac, dtype=float)
     s2 = 2.0 * cost / max(n - p, 1)
-    norms = np.sqrt(np.sum(J * J, axis=0))
+    norms = np.sqrt(np.einsum("ij,ij->j", J, J))  # no n×p square on a long record
     biggest = float(norms.max()) if norms.size else 0.0
     empty = ~(norms > 1e-14 * biggest) if biggest > 0 else np.ones(p, dtype=bool)
     cov = np.full((p, p), np.nan)
@@ -171,7 +173,8 @@ def assess(problem, theta, jac, cost, n, active_mask=None, residual=None,
     live = np.flatnonzero(~empty)
     if live.size:
         Js = J[:, live] / norms[live]
-        _, S, Vt = np.linalg.svd(Js, full_matrices=False)
+        # the SVD of QR's R: the same S and Vt without the n×p U of a long record's
+        _, S, Vt = np.linalg.svd(np.linalg.qr(Js, mode="r"))
         keep = S > FLAT_SINGULAR_VALUE * S[0]
         if not keep.all():
             # parameters with weight in a flat direction are not determined

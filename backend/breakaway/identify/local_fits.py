@@ -292,30 +292,59 @@ def _cubic_slope(t, x, i, lo, hi):
     """The slope at sample ``i`` of the least-squares cubic in t over [lo, hi], and how
     much more variance per unit variance of x it has than the straight line's slope."""
     scale = max(t[hi] - t[i], t[i] - t[lo])
-    moments = np.zeros((4, 4))
-    rhs = np.zeros(4)
+    # the normal equations' sums in scalars (τ = (t - t_i)/scale): kept in registers,
+    # where a 4×4 array updated per sample costs more than the products themselves
+    s0 = s1 = s2 = s3 = s4 = s5 = s6 = 0.0
+    r0 = r1 = r2 = r3 = 0.0
     for j in range(lo, hi + 1):
         tau = (t[j] - t[i]) / scale
-        powers = np.array([1.0, tau, tau * tau, tau * tau * tau])
-        for a in range(4):
-            rhs[a] += powers[a] * (x[j] - x[i])
-            for b in range(4):
-                moments[a, b] += powers[a] * powers[b]
-    inverse = np.linalg.inv(moments)
-    slope = (inverse[1, 0] * rhs[0] + inverse[1, 1] * rhs[1] + inverse[1, 2] * rhs[2]
-             + inverse[1, 3] * rhs[3]) / scale
+        tau2 = tau * tau
+        tau3 = tau2 * tau
+        dx = x[j] - x[i]
+        s0 += 1.0
+        s1 += tau
+        s2 += tau2
+        s3 += tau3
+        s4 += tau2 * tau2
+        s5 += tau2 * tau3
+        s6 += tau3 * tau3
+        r0 += dx
+        r1 += tau * dx
+        r2 += tau2 * dx
+        r3 += tau3 * dx
+    # column 1 of the moments' inverse (its row 1: they are symmetric) by Cholesky in
+    # scalars, where LAPACK's inverse called per sample costs eight times the sums;
+    # CUBIC_SAMPLES distinct times keep the moments positive definite
+    l00 = math.sqrt(s0)
+    l10 = s1 / l00
+    l11 = math.sqrt(s2 - l10 * l10)
+    l20 = s2 / l00
+    l21 = (s3 - l20 * l10) / l11
+    l22 = math.sqrt(s4 - l20 * l20 - l21 * l21)
+    l30 = s3 / l00
+    l31 = (s4 - l30 * l10) / l11
+    l32 = (s5 - l30 * l20 - l31 * l21) / l22
+    l33 = math.sqrt(s6 - l30 * l30 - l31 * l31 - l32 * l32)
+    z1 = 1.0 / l11  # L z = e₁ (z₀ = 0)
+    z2 = -l21 * z1 / l22
+    z3 = -(l31 * z1 + l32 * z2) / l33
+    y3 = z3 / l33  # Lᵀ y = z
+    y2 = (z2 - l32 * y3) / l22
+    y1 = (z1 - l21 * y2 - l31 * y3) / l11
+    y0 = -(l10 * y1 + l20 * y2 + l30 * y3) / l00
+    slope = (y0 * r0 + y1 * r1 + y2 * r2 + y3 * r3) / scale
     # the straight line's slope variance is 1/Σ(τ - τ̄)²; the cubic's, its inverse's
     # element: the line is nested in the cubic, so the difference is the excess's
-    centred = moments[2, 0] - moments[1, 0] ** 2 / moments[0, 0]
-    excess = (inverse[1, 1] - 1.0 / centred) / scale**2
+    centred = s2 - s1**2 / s0
+    excess = (y1 - 1.0 / centred) / scale**2
     return slope, max(excess, 0.0)
 
 
 @njit(cache=True)
-def _take_window(t, x, i, lo, hi, v, duration, spread, with_spread, error):
+def _take_window(t, x, i, lo, hi, v, duration, spread, with_spread, error, slope=np.nan):
     """Sample ``i``'s v, the time it is taken over and (``with_spread``) its spread,
-    from the window [lo, hi]."""
-    v[i] = _slope(t, x, lo, hi)
+    from the window [lo, hi] (``slope``: x's over it, where already known)."""
+    v[i] = _slope(t, x, lo, hi) if math.isnan(slope) else slope
     duration[i] = t[hi] - t[lo]
     if with_spread and hi - lo >= CUBIC_SAMPLES - 1:
         # the counts' error moves the two slopes apart too; what they add is taken off

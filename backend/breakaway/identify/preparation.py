@@ -3,12 +3,13 @@ aside (``outliers``, found by :mod:`.outliers`), and row subsets of a dataset.""
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 
 import numpy as np
 
 from .csvdata import MIN_ROWS, Dataset
 from .fitting import FitError
+from .models import with_forces
 from .outliers import SPIKE_SIGMAS, despiked_force
 from .warnings import warning
 
@@ -49,8 +50,7 @@ def without_spikes(data: Dataset, spikes) -> Dataset:
     the other kinds' rows are separate measurements, and a spike's row is left out."""
     if data.kind != "timeseries":
         return subset(data, np.flatnonzero(~spikes))
-    return replace(data, columns={**data.columns,
-                                  "F": despiked_force(data.columns["F"], spikes)})
+    return with_forces(data, despiked_force(data.columns["F"], spikes))
 
 
 @dataclass

@@ -90,8 +90,8 @@ class Backlash(Effect):
         if p["play"] <= 0:
             return ctx
         xc, engaged = play_operator(ctx["x"], p["play"])
-        return {**ctx, "x": xc, "v": pb.kinematic_velocity(xc), "d": pb.kinematic_direction(xc),
-                "engaged": engaged}
+        v = pb.body_velocity(xc, engaged) if ctx["x"] is pb.x else pb.kinematic_velocity(xc)
+        return {**ctx, "x": xc, "v": v, "d": pb.kinematic_direction(xc), "engaged": engaged}
 
     def starts(self, pb, current, r):
         travel = pb.scales.travel

@@ -18,7 +18,7 @@ from ..effects import MIN_RATES
 from .base import Problem, Scales
 from .breakaway import BreakawayProblem
 from .steady import SteadyProblem
-from .timeseries import TimeseriesProblem, with_weights
+from .timeseries import TimeseriesProblem, with_forces, with_weights
 
 PROBLEMS = {cls.kind: cls for cls in (TimeseriesProblem, SteadyProblem, BreakawayProblem)}
 
@@ -36,4 +36,4 @@ def problem_for(data: Dataset, effects=(), fixed=None, ties=None) -> Problem:
 
 
 __all__ = ["BreakawayProblem", "PROBLEMS", "Problem", "Scales", "SteadyProblem",
-           "TimeseriesProblem", "problem_for", "with_weights"]
+           "TimeseriesProblem", "problem_for", "with_forces", "with_weights"]

@@ -111,7 +111,9 @@ class ReadingErrors:
         if self.stop_rows(params) is None:
             return np.zeros(self.x.size)
         dither, directions = self.stop_path
-        difference = np.abs(self.predict(params, dither, directions=directions)
+        velocity = self.once("stop path velocity",
+                             lambda: self.kinematic_velocity(self.x + dither), motion=True)
+        difference = np.abs(self._predict_reading(params, dither, directions, velocity)
                             - self.predict(params))
         return np.minimum(difference, self.stop_bounds)
 
@@ -181,15 +183,31 @@ class ReadingErrors:
         return gain * self.derivatives.bias
 
     def _reading_errors(self, params, window: int, seed: int) -> np.ndarray:
+        readings = self._readings(window, seed)
+        # the path's own reversals: any turn the reading could resolve at all
+        exact = self._predict_reading(params, *next(readings))
+        errors = [self._predict_reading(params, *reading) - exact for reading in readings]
+        return np.sqrt(np.mean(np.square(errors), axis=0))
+
+    def _predict_reading(self, params, dither, directions, velocity) -> np.ndarray:
+        return self.predict(params, dither, directions=directions, velocity=velocity)
+
+    def _readings(self, window: int, seed: int):
+        """The smoothed record, then each of its :data:`RESOLUTION_DRAWS` readings, as
+        ``predict``'s dither [m], directions and velocity [m/s]. They are the record's
+        alone; the velocities, which take most of the time, are kept with its
+        kinematics (:meth:`~.timeseries.TimeseriesProblem.once`), the rest drawn again
+        from the same seed."""
+        velocities = self.once(("reading velocities", window, seed), list, motion=True)
         rng = np.random.default_rng(seed)
         smooth = np.concatenate([
             smooth_fit(self.t[a:b], self.recorded_x[a:b], window)[0] if b - a >= window
             else self.recorded_x[a:b] for a, b in self.blocks])
-        # the path's own reversals: any turn the reading could resolve at all
-        exact = self.predict(params, smooth - self.x,
-                             directions=self.kinematic_direction(smooth, 0.5 * self.resolution_x))
-        errors = []
-        for _ in range(RESOLUTION_DRAWS):
+        if not velocities:
+            velocities.append(self.kinematic_velocity(smooth))
+        yield (smooth - self.x, self.kinematic_direction(smooth, 0.5 * self.resolution_x),
+               velocities[0])
+        for draw in range(1, RESOLUTION_DRAWS + 1):
             if self.quantum_x > 0:
                 # a random phase of the grid, and the flicker of a count boundary: an
                 # encoder at rest near one reads either count (a quarter count of jitter)
@@ -201,12 +219,11 @@ class ReadingErrors:
                 read = smooth + self.noise_x * rng.standard_normal(smooth.size)
             # the reading goes through what this engine does with a record
             path = self.model_positions(read)
-            # v through an encoder's edges needs the counts themselves, as the record's
-            velocity = self.kinematic_velocity(read) if self.derivatives.edges else None
-            errors.append(self.predict(params, path - self.x,
-                                       directions=self.kinematic_direction(path),
-                                       velocity=velocity) - exact)
-        return np.sqrt(np.mean(np.square(errors), axis=0))
+            if len(velocities) == draw:
+                # v through an encoder's edges needs the counts themselves, as the record's
+                velocities.append(self.kinematic_velocity(read if self.derivatives.edges
+                                                          else path))
+            yield path - self.x, self.kinematic_direction(path), velocities[draw]
 
 
 __all__ = ["ReadingErrors"]

@@ -10,8 +10,8 @@ from scipy.ndimage import uniform_filter1d
 
 from ...presliding import _presliding_kernel
 from ...steady import stribeck_kernel
-from ..derivatives import (block_velocity, derivatives, position_error, positions,
-                           velocity_spread)
+from ..derivatives import (SHORTEST_WINDOWED, block_velocity, derivatives, position_error,
+                           positions, velocity_and_reach, velocity_at, velocity_spread)
 from ..local_fits import WINDOWS, acceleration_at
 from ..effects import engaged_presliding
 from ..kinematics import REVERSAL_STEPS, direction, position_noise, quantum
@@ -21,8 +21,11 @@ from ..strokes import breakaway_places, breakaways_apart, last_reversal
 from .base import Problem, Scales, _robust_scale
 from .reading import ReadingErrors
 
-#: Kinematics per dataset (a fit builds many problems on one record).
+#: Kinematics per dataset (a fit builds many problems on one record) ...
 _KINEMATICS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+#: ... and the part of them that t and x alone set, shared by the datasets that differ
+#: only in their forces (a record whose spikes were mended)
+_MOTION: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
 #: A row is in gross sliding when the presliding fraction s·|x − x_r| exceeds this: the
 #: body has travelled a quarter of the presliding distance past the point where (E6')
 #: reaches the steady curve (a fit that just touches z = 1 at a stroke's end is not).
@@ -44,7 +47,17 @@ def with_weights(data, weights):
     weighted = replace(data, weights=weights)
     if data in _KINEMATICS:
         _KINEMATICS[weighted] = _KINEMATICS[data]
+        _MOTION[weighted] = _MOTION[data]
     return weighted
+
+
+def with_forces(data, forces):
+    """``data`` with the forces ``forces`` [N] in place of its own, sharing what its t
+    and x set (v, a, the stops and the re-readings of x: :meth:`TimeseriesProblem.once`)."""
+    changed = replace(data, columns={**data.columns, "F": forces})
+    if data in _MOTION:
+        _MOTION[changed] = _MOTION[data]
+    return changed
 
 
 class TimeseriesProblem(ReadingErrors, Problem):
@@ -66,13 +79,17 @@ class TimeseriesProblem(ReadingErrors, Problem):
         self.F0 = data.meta_float("f0", 0.0)
         cached = _KINEMATICS.get(data)
         if cached is None:
-            cached = _KINEMATICS[data] = self._kinematics(data.printed.get("x"))
+            motion = _MOTION.get(data)
+            if motion is None:
+                motion = _MOTION[data] = self._motion(data.printed.get("x"))
+            self.__dict__.update(motion)
+            cached = _KINEMATICS[data] = {**motion, **self._forces()}
         self.__dict__.update(cached)
         super().__init__(data, effects, fixed, ties)
 
-    def _kinematics(self, printed_x: float | None) -> dict:
-        """What every model of this record shares; computed once per dataset
-        (``printed_x``: the unit of x's last printed digit, if known)."""
+    def _motion(self, printed_x: float | None) -> dict:
+        """What every model of a record of these t and x shares; computed once per
+        dataset (``printed_x``: the unit of x's last printed digit, if known)."""
         #: quantisation step and noise std of x (0: none), its resolution, and the
         #: reversal hysteresis: direction changes within a few resolutions are not real
         self.quantum_x = quantum(self.recorded_x, printed_x)
@@ -92,33 +109,38 @@ class TimeseriesProblem(ReadingErrors, Problem):
                                    for i, j in self.blocks])
         with np.errstate(divide="ignore"):
             log_speed = np.log(np.abs(v))  # g's argument, reused by every evaluation
+        #: the stretches where the body may have halted and turned unseen, and a path
+        #: turned in each
+        self.stops = find_stops(self.recorded_x, self.blocks, self.quantum_x,
+                                self.hysteresis)
+        self.d = self.kinematic_direction(self.x)
+        path, turned = None, []
+        if self.stops:
+            dither, directions, turned = self.turned_path()
+            dither.flags.writeable = directions.flags.writeable = False  # shared by fits
+            path = (dither, directions)
+        return {"quantum_x": self.quantum_x, "noise_x": self.noise_x, "stops": self.stops,
+                "stop_mask": stop_mask(self.x.size, self.stops),
+                "stop_path": path, "turned_spans": turned,
+                "resolution_x": self.resolution_x, "hysteresis": self.hysteresis, "x": self.x,
+                "derivatives": self.derivatives, "v": v, "v_spread": v_spread,
+                "log_speed": log_speed, "a": a, "d": self.d}
+
+    def _forces(self) -> dict:
+        """What every model of this record shares that its forces set too: the scales,
+        and how far the measured force bounds what a turn in a stop changed."""
         steps = np.abs(np.diff(self.x))
         moving = steps[steps > 0]
         scales = Scales(
             force=_robust_scale(self.measured),
-            speed=_robust_scale(v),
+            speed=_robust_scale(self.v),
             travel=float(np.ptp(self.x)) or 1.0,
             duration=float(self.t[-1] - self.t[0]) or 1.0,
-            accel=_robust_scale(a),
+            accel=_robust_scale(self.a),
             step=max(float(np.median(moving)) if moving.size else 1.0, self.quantum_x),
         )
-        #: the stretches where the body may have halted and turned unseen, a path turned
-        #: in each, and how far the measured force bounds what such a turn changed
-        self.stops = find_stops(self.recorded_x, self.blocks, self.quantum_x,
-                                self.hysteresis)
-        self.d = self.kinematic_direction(self.x)
-        path, bounds = None, None
-        if self.stops:
-            dither, directions, turned = self.turned_path()
-            dither.flags.writeable = directions.flags.writeable = False  # shared by fits
-            path, bounds = (dither, directions), stop_bounds(self.measured, turned)
-        return {"quantum_x": self.quantum_x, "noise_x": self.noise_x, "stops": self.stops,
-                "stop_mask": stop_mask(self.x.size, self.stops),
-                "stop_path": path, "stop_bounds": bounds,
-                "resolution_x": self.resolution_x, "hysteresis": self.hysteresis, "x": self.x,
-                "derivatives": self.derivatives, "v": v, "v_spread": v_spread,
-                "log_speed": log_speed, "a": a, "d": self.d,
-                "scales": scales}
+        bounds = stop_bounds(self.measured, self.turned_spans) if self.stops else None
+        return {"scales": scales, "stop_bounds": bounds}
 
     def model_positions(self, recorded):
         """The positions the model runs on for a record of these samples
@@ -132,6 +154,50 @@ class TimeseriesProblem(ReadingErrors, Problem):
         return block_velocity(self.t, x, self.resolution_x, self.blocks,
                               self.derivatives.edges, self.derivatives.step_error)
 
+    def body_velocity(self, body, engaged):
+        """:meth:`kinematic_velocity` of the body behind a play, ``body`` [m], engaged
+        where it rides an edge of the play. Wherever everything a sample's window reads
+        rides one edge, the body follows the model's positions at a constant offset,
+        which no line's slope sees: its v is theirs, and only the other samples' is
+        taken again (a play's fit evaluates the body's v hundreds of times)."""
+        if self.derivatives.edges or self.resolution_x <= 0:
+            return self.kinematic_velocity(body)
+        reference, reach = self.once("model positions' velocity", self._velocity_and_reach,
+                                     motion=True)
+        side = np.where(engaged, np.sign(body - self.x), 0.0)
+        # a run of rows on one edge; a free row is a run of its own
+        runs = np.cumsum(np.r_[True, (side[1:] != side[:-1]) | (side[1:] == 0.0)])
+        first, last = reach[:, 0], reach[:, 1]
+        moved = (runs[first] != runs[last]) | (side[first] == 0.0)
+        out = np.empty(body.size)
+        for a, b in self.blocks:
+            if b - a < SHORTEST_WINDOWED:
+                out[a:b] = self._block_velocity(body, a, b)
+            else:
+                out[a:b] = velocity_at(self.t[a:b], body[a:b], self.resolution_x,
+                                       np.flatnonzero(moved[a:b]), reference[a:b],
+                                       self.derivatives.step_error)
+        return out
+
+    def _velocity_and_reach(self):
+        """v of the model's positions and each sample's reach (:func:`velocity_and_reach`,
+        block by block, in the record's rows); a short block's reach is itself."""
+        v, reach = np.empty(self.x.size), np.empty((self.x.size, 2), dtype=np.int64)
+        for a, b in self.blocks:
+            if b - a < SHORTEST_WINDOWED:
+                v[a:b], reach[a:b] = self._block_velocity(self.x, a, b), (a, b - 1)
+            else:
+                v[a:b], local = velocity_and_reach(self.t[a:b], self.x[a:b],
+                                                   self.resolution_x,
+                                                   self.derivatives.step_error)
+                reach[a:b] = local + a
+        return v, reach
+
+    def _block_velocity(self, x, a, b):
+        """v of block [a, b) of another position record, taken as the record's own is."""
+        return block_velocity(self.t, x, self.resolution_x, [(a, b)], self.derivatives.edges,
+                              self.derivatives.step_error)
+
     def kinematic_acceleration(self, x):
         """a of another position record of the same samples, taken as the record's own
         a is (the same window, block by block)."""
@@ -139,10 +205,10 @@ class TimeseriesProblem(ReadingErrors, Problem):
             return np.concatenate([np.gradient(np.gradient(x[a:b], self.t[a:b]), self.t[a:b])
                                    for a, b in self.blocks])
         windows = self.derivatives.windows
-        v = self.kinematic_velocity(x)
-        return np.concatenate([acceleration_at(self.t[a:b], x[a:b], windows[a:b])
-                               if b - a >= WINDOWS[0] else np.gradient(v[a:b], self.t[a:b])
-                               for a, b in self.blocks])
+        return np.concatenate([
+            acceleration_at(self.t[a:b], x[a:b], windows[a:b]) if b - a >= WINDOWS[0]
+            else np.gradient(self._block_velocity(x, a, b), self.t[a:b])
+            for a, b in self.blocks])
 
     def kinematic_direction(self, x, hysteresis=None):
         """Directions of a position record of the same samples, with this record's
@@ -226,14 +292,22 @@ class TimeseriesProblem(ReadingErrors, Problem):
         """Index of the sample before each row's last reversal (0 before the first)."""
         return last_reversal(self.d)
 
+    def once(self, key, compute, motion=False):
+        """What ``compute()`` gives, computed once per dataset and kept with its
+        kinematics: for what the record alone sets, whatever the model's parameters
+        (``motion``: what its t and x alone set, once for every dataset that shares
+        them, :func:`with_forces`)."""
+        cached = (_MOTION if motion else _KINEMATICS)[self.data]
+        if key not in cached:
+            cached[key] = compute()
+        return cached[key]
+
     @property
     def stick_slip(self):
         """The record's stick-slip cycle (:mod:`..stickslip`), or None; found once per
         dataset."""
-        cached = _KINEMATICS[self.data]
-        if "stick_slip" not in cached:
-            cached["stick_slip"] = find_stick_slip(self.t, self.recorded_x, self.measured)
-        return cached["stick_slip"]
+        return self.once("stick_slip",
+                         lambda: find_stick_slip(self.t, self.recorded_x, self.measured))
 
     def presliding_fraction(self, params) -> np.ndarray:
         """z = s·|x − x_r| of each row under ``params`` (x_r at the last reversal)."""
