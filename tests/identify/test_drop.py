@@ -3,6 +3,8 @@ is the sliding level with its standard error."""
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 
@@ -230,6 +232,30 @@ def test_a_drop_whose_coulomb_level_lies_beyond_the_curves_turn_is_kept(seed):
     assert params["Fs"] == pytest.approx(21.77, rel=0.01)
     assert params["Fc"] == pytest.approx(17.08, rel=0.05)
     assert params["sigma"] == pytest.approx(434.0, rel=0.1)
+
+
+def test_a_drop_is_shown_only_within_the_speeds_and_forces_the_record_holds():
+    # the gap of a drop that earns its parameters is trusted where the data show the
+    # drop; with its V below the slowest speed shown, or its level at rest above every
+    # force in the record, they do not (a creep record's fit: V = 2 µrad/s beside
+    # speeds of 0.4–0.7 mrad/s, Fs = 187 N·m in a file whose forces stay below 10)
+    data = _turned_up(1)
+    fit = fit_model(data, ("viscous",), starts=[{"Fc": 17.08, "Fs": 21.77, "V": 0.006,
+                                                 "delta": 1.0, "sigma": 434.0}])
+    earned = dict(earns=lambda without, with_: None)
+    assert unresolved_drop(fit, 0.14, **earned) is None
+    slowest = float(np.min(fit.problem.curve_speeds(fit.params)))
+    creeping = replace(fit, params={**fit.params, "V": 0.5 * slowest})
+    assert "standard errors of no drop" in unresolved_drop(creeping, 0.14, **earned)
+    # a level at rest 50 % above every force, its gap as uncertain as itself
+    largest = float(np.max(np.abs(data.columns["F"])))
+    gap = 1.5 * largest - fit.params["Fc"]
+    unreached = replace(fit, params={**fit.params, "Fs": 1.5 * largest},
+                        assessment=replace(fit.assessment, gap_stderr={"Fs": gap}))
+    assert "standard errors of no drop" in unresolved_drop(unreached, 0.14, **earned)
+    # the same within the forces: shown
+    reached = replace(unreached, params={**fit.params, "Fs": 0.99 * largest})
+    assert unresolved_drop(reached, 0.14, **earned) is None
 
 
 def test_a_gap_within_its_errors_stays_no_drop_where_the_drops_speed_is_beyond_the_data():

@@ -163,11 +163,18 @@ def unresolved_drop(fit: FitResult, noise: float, bends: bool = True,
 
 def _drop_shown(fit: FitResult, levels, speeds) -> bool:
     """Whether the data show where ``fit``'s drop starts and how fast it falls: each
-    Stribeck level of ``levels`` (the force at rest) determined, V within the speeds the
-    data show the curve at (``speeds``), no Coulomb level on its bound. Only where the
-    drop would level off may then trade with the rest."""
-    return not level_on_bound(fit) and fit.params["V"] <= float(np.max(speeds)) \
-        and all(fit.determined.get(level) for level in levels)
+    Stribeck level of ``levels`` (the force at rest) determined and within the forces
+    the record holds, V within the speeds the data show the curve at (``speeds``), no
+    Coulomb level on its bound. Only where the drop would level off may then trade
+    with the rest. A V below the slowest speed shown puts the whole fall where the data
+    never are, as one beyond the fastest does (a creep record crawling at 0.4–0.7
+    mrad/s: V = 2 µrad/s, and a level at rest of 187 N·m in a file whose forces stay
+    below 10)."""
+    p = fit.params
+    largest = float(np.max(np.abs(fit.problem.measured)))
+    return not level_on_bound(fit) \
+        and float(np.min(speeds)) <= p["V"] <= float(np.max(speeds)) \
+        and all(fit.determined.get(level) and p[level] <= largest for level in levels)
 
 
 def retried_drop(fit: FitResult, noise: float) -> tuple[FitResult, FitResult] | None:
