@@ -423,5 +423,6 @@ def _span(v, spans) -> float:
 
 
 __all__ = ["Derivatives", "MAX_HALF_WINDOW", "POSITION_RESOLUTIONS", "SHORTEST_WINDOWED",
-           "WINDOW_RESOLUTIONS", "block_velocity", "derivatives", "position_error", "positions", "velocity",
-           "velocity_and_reach", "velocity_and_span", "velocity_at", "velocity_spread"]
+           "WINDOW_RESOLUTIONS", "block_velocity", "derivatives", "position_error",
+           "positions", "velocity", "velocity_and_reach", "velocity_and_span", "velocity_at",
+           "velocity_spread"]

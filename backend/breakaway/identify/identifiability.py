@@ -173,7 +173,7 @@ def assess(problem, theta, jac, cost, n, active_mask=None, residual=None,
     live = np.flatnonzero(~empty)
     if live.size:
         Js = J[:, live] / norms[live]
-        # the SVD of QR's R: the same S and Vt without the n×p U of a long record's
+        # QR's R has the same S and Vt: its SVD spares a long record's n×p U
         _, S, Vt = np.linalg.svd(np.linalg.qr(Js, mode="r"))
         keep = S > FLAT_SINGULAR_VALUE * S[0]
         if not keep.all():
