@@ -33,3 +33,16 @@ ensure_chromium() {
     export BREAKAWAY_CHROMIUM=""
   fi
 }
+
+# numba's on-disk cache checks a kernel's own source file, not those of the kernels it
+# calls from other files: after an edit there a caller would run stale compiled code.
+# The cache is kept per state of the package's sources (older states removed), so any
+# change compiles afresh.
+use_kernel_cache() {
+  local state
+  state="$(find backend -name '*.py' -print0 | LC_ALL=C sort -z | xargs -0 cat \
+    | python3 -c 'import hashlib, sys; print(hashlib.sha1(sys.stdin.buffer.read()).hexdigest()[:12])')"
+  export NUMBA_CACHE_DIR="$PWD/.numba-cache/$state"
+  mkdir -p "$NUMBA_CACHE_DIR"
+  find .numba-cache -mindepth 1 -maxdepth 1 ! -name "$state" -exec rm -rf {} +
+}
