@@ -8,6 +8,7 @@ exists, else Playwright's own browser. A browser that cannot launch FAILS the te
 from __future__ import annotations
 
 import os
+import re
 from pathlib import Path
 
 import pytest
@@ -50,6 +51,10 @@ def browser():
         browser.close()
 
 
+#: A fit job's own URL (its status, polled from the moment it is queued).
+FIT_JOB = re.compile(r"/api/fit/jobs/([0-9a-f]+)$")
+
+
 class Explorer:
     """A page of the explorer plus helpers that read what the plots show."""
 
@@ -60,6 +65,10 @@ class Explorer:
         page.on("console", lambda message: message.type == "error"
                 and self.problems.append(f"console: {message.text}"))
         page.on("pageerror", lambda error: self.problems.append(f"page error: {error}"))
+        #: the fit jobs this page asked about (cancelled when its test ends)
+        self.fit_jobs: set[str] = set()
+        page.on("request", lambda request: (job := FIT_JOB.search(request.url))
+                and self.fit_jobs.add(job.group(1)))
 
     def open(self, query: str = "") -> "Explorer":
         self.page.goto(f"{self.base_url}/{query}")
@@ -70,6 +79,12 @@ class Explorer:
 
     def ready(self) -> None:
         wait_ready(self.page)
+
+    def cancel_fits(self) -> None:
+        """Cancel the fit jobs this page started: one still running when its test ends
+        holds the server's single fit worker, and a later test's fit waits behind it."""
+        for job in self.fit_jobs:
+            self.page.request.delete(f"{self.base_url}/api/fit/jobs/{job}")
 
     def sim_ready(self) -> None:
         wait_ready(self.page, "simReady")
@@ -104,6 +119,7 @@ def explorer(context, server_url):
     page.set_default_timeout(20_000)
     explorer = Explorer(page, server_url)
     yield explorer
+    explorer.cancel_fits()
     page.close()
     # CSP violations and script errors show up here
     assert explorer.problems == []
