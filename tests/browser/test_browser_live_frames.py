@@ -29,6 +29,9 @@ RECORD = """
     return original(url, options);
   };
   window.__frames = [];
+  // when each input arrives [ms]: a hand rests where the gap reaches the settle window
+  window.__inputs = [];
+  document.addEventListener('input', () => window.__inputs.push(performance.now()), true);
   document.addEventListener('DOMContentLoaded', () => {
     const plots = document.getElementById('plots');
     const last = {};
@@ -135,6 +138,7 @@ def test_a_pointer_drag_is_drawn_live_and_asks_the_server_once_released(explorer
     x = box["x"] + 8 + start * (box["width"] - 16)  # the thumb's centre
     mark = len(recorded(page))
     requests = len(sent(page, "explore"))
+    inputs = page.evaluate("window.__inputs.length")
     page.mouse.move(x, y)
     page.mouse.down()
     for step in range(1, 31):
@@ -142,11 +146,21 @@ def test_a_pointer_drag_is_drawn_live_and_asks_the_server_once_released(explorer
         page.wait_for_timeout(16)
     during = frame_changes(page, mark)
     assert len(during) >= 10
-    assert all(r["explore"] == requests and r["ready"] == "false" for r in during)
+    # the hand rests only where its inputs stop for a settle window: none while it moves
+    # every 16 ms, unless the machine running the test stalls that long (a loaded
+    # runner), and then the settled drawing may come in at each such rest
+    times = page.evaluate(f"window.__inputs.slice({inputs})")
+    settle = page.evaluate("window.breakaway.settleMs")
+    rests = sum(later - earlier >= settle for earlier, later in zip(times, times[1:]))
+    assert len(times) >= 10
+    assert all(r["explore"] <= requests + rests for r in during)
+    if rests == 0:
+        assert all(r["ready"] == "false" for r in during)
     page.mouse.up()
     explorer.ready()
     asked = sent(page, "explore")[requests:]
-    assert len(asked) == 1 and asked[0]["k"] == explorer.state()["k"] > DEFAULTS["k"]
+    assert 1 <= len(asked) <= 1 + rests
+    assert asked[-1]["k"] == explorer.state()["k"] > DEFAULTS["k"]
     assert_plots_match_model(explorer)
     assert_settled_without_canvas(page)
 
